@@ -1,0 +1,124 @@
+"""Training batches, built on the host, deterministic in ``(seed, step)``.
+
+A local batch packs whole strokes (a stroke basis, as the paper trains) into a
+fixed number of encoder windows: ``windows`` slots, each naming a
+``(stroke, step)``; padding costs only the cheap LSTM recurrence, never the
+encoder. A global batch holds the state before a random stroke and that
+stroke's start pixel. The state images themselves are made on the device by
+:mod:`jdraw.state`, the functions the planner calls.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from jdraw import demo as D
+from jdraw import raster
+from jdraw import state as S
+from jdraw.kanji import KanjiSet
+
+CANVAS = raster.CANVAS
+
+
+def _union(strokes) -> np.ndarray:
+    return raster.render_strokes(strokes) if strokes else np.zeros((CANVAS, CANVAS), bool)
+
+
+def local_batch(
+    ks: KanjiSet,
+    pool: np.ndarray,
+    rng: np.random.Generator,
+    *,
+    windows: int,
+    strokes: int,
+    max_len: int,
+    per_char: int,
+    strength: float,
+) -> dict:
+    """Packs random strokes of random characters into ``windows`` slots.
+
+    Returns a dict of numpy arrays (``B = strokes``, ``T = max_len``):
+      ``target`` bool [B, 100, 100], ``labels`` int32 [B, 100, 100],
+      ``visited`` bool [B, 100, 100] (earlier strokes and this stroke's start),
+      ``pts`` int32 [B, T + 1, 2] pen positions, ``n_moves`` int32 [B],
+      ``move`` int32 [B, T] move labels, ``touch`` float32 [B, T],
+      ``valid`` bool [B, T], ``slot_b``/``slot_t`` int32 [windows],
+      ``slot_valid`` bool [windows], ``n_strokes`` int.
+    """
+    out = {
+        "target": np.zeros((strokes, CANVAS, CANVAS), bool),
+        "labels": np.zeros((strokes, CANVAS, CANVAS), np.int32),
+        "visited": np.zeros((strokes, CANVAS, CANVAS), bool),
+        "pts": np.zeros((strokes, max_len + 1, 2), np.int32),
+        "n_moves": np.zeros(strokes, np.int32),
+        "move": np.full((strokes, max_len), S.STAY, np.int32),
+        "touch": np.zeros((strokes, max_len), np.float32),
+        "valid": np.zeros((strokes, max_len), bool),
+        "slot_b": np.zeros(windows, np.int32),
+        "slot_t": np.zeros(windows, np.int32),
+        "slot_valid": np.zeros(windows, bool),
+    }
+    b = used = 0
+    full = False
+    while not full:
+        d = D.sample(ks, int(rng.choice(pool)), rng, strength)
+        labels = S.component_labels(d.target)
+        picks = rng.permutation(len(d.strokes))[:per_char]
+        for i in sorted(picks):
+            s = d.strokes[i]
+            moves = len(s) - 1
+            steps = min(moves + 1, max_len)  # the last step says "lift" unless cut
+            if b >= strokes or used + steps > windows:
+                full = True
+                break
+            out["target"][b] = d.target
+            out["labels"][b] = labels
+            v = _union(d.strokes[:i])
+            v[s[0, 1], s[0, 0]] = True
+            out["visited"][b] = v
+            n = min(moves, max_len)
+            out["pts"][b, : n + 1] = s[: n + 1]
+            out["pts"][b, n + 1 :] = s[n]
+            out["n_moves"][b] = n
+            mv = S.move_index(np.diff(s[: n + 1], axis=0))
+            out["move"][b, :n] = mv
+            out["touch"][b, :n] = 1.0
+            out["valid"][b, :steps] = True
+            out["slot_b"][used : used + steps] = b
+            out["slot_t"][used : used + steps] = np.arange(steps)
+            out["slot_valid"][used : used + steps] = True
+            used += steps
+            b += 1
+    out["n_strokes"] = b
+    return out
+
+
+def global_batch(
+    ks: KanjiSet, pool: np.ndarray, rng: np.random.Generator, *, size: int, strength: float
+) -> dict:
+    """States before a random stroke and that stroke's start.
+
+    Returns numpy arrays: ``target``, ``visited``, ``last`` bool [G, 100, 100],
+    ``pen`` int32 [G, 2], ``has_pen`` bool [G], ``start`` int32 [G] (flat
+    index ``y * 100 + x``).
+    """
+    out = {
+        "target": np.zeros((size, CANVAS, CANVAS), bool),
+        "visited": np.zeros((size, CANVAS, CANVAS), bool),
+        "last": np.zeros((size, CANVAS, CANVAS), bool),
+        "pen": np.zeros((size, 2), np.int32),
+        "has_pen": np.zeros(size, bool),
+        "start": np.zeros(size, np.int32),
+    }
+    for g in range(size):
+        d = D.sample(ks, int(rng.choice(pool)), rng, strength)
+        i = int(rng.integers(len(d.strokes)))
+        out["target"][g] = d.target
+        out["visited"][g] = _union(d.strokes[:i])
+        if i > 0:
+            out["last"][g] = _union(d.strokes[i - 1 : i])
+            out["pen"][g] = d.strokes[i - 1][-1]
+            out["has_pen"][g] = True
+        x, y = d.strokes[i][0]
+        out["start"][g] = y * CANVAS + x
+    return out

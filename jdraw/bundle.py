@@ -1,0 +1,119 @@
+"""Inference bundles: parameters, model config and a format version.
+
+A bundle is a folder with ``bundle.json`` (format version, model config,
+provenance) and ``params.npz`` (every array of the model's NNX state, keyed
+by its path). It needs neither Orbax nor the training config to load.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+import zipfile
+
+import numpy as np
+from flax import nnx
+
+FORMAT = "jdraw-bundle"
+FORMAT_VERSION = 1
+DEFAULT_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "default"
+DEFAULT_MODEL = {"hidden": 256, "core": "lstm", "extraction": "late"}
+
+
+class BundleError(ValueError):
+    """A bundle that is missing, corrupt or does not fit this code."""
+
+
+def _key(path) -> str:
+    return "/".join(str(getattr(p, "key", getattr(p, "idx", p))) for p in path)
+
+
+def state_arrays(model) -> dict[str, np.ndarray]:
+    """Every array of ``model``'s state (params and batch stats), keyed by path."""
+    flat = nnx.to_flat_state(nnx.state(model))
+    return {
+        _key(path): np.asarray(v.get_value() if hasattr(v, "get_value") else v.value)
+        for path, v in flat
+    }
+
+
+def write(model, model_config: dict, out_dir, provenance: dict | None = None) -> pathlib.Path:
+    """Writes ``model`` as a bundle in ``out_dir``."""
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    np.savez(out / "params.npz", **state_arrays(model))
+    meta = {
+        "format": FORMAT,
+        "format_version": FORMAT_VERSION,
+        "model": dict(model_config),
+        "provenance": provenance or {},
+    }
+    (out / "bundle.json").write_text(json.dumps(meta, indent=2) + "\n")
+    return out
+
+
+def read_meta(bundle_dir) -> dict:
+    path = pathlib.Path(bundle_dir) / "bundle.json"
+    if not path.exists():
+        raise BundleError(
+            f"{path}: no bundle.json here; is this a jdraw bundle (see jdraw.export)?"
+        )
+    try:
+        meta = json.loads(path.read_text())
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise BundleError(f"{path}: not valid JSON ({e})") from e
+    if meta.get("format") != FORMAT:
+        raise BundleError(f"{path}: format is {meta.get('format')!r}, expected {FORMAT!r}")
+    if meta.get("format_version") != FORMAT_VERSION:
+        raise BundleError(
+            f"{path}: format_version {meta.get('format_version')!r}; "
+            f"this jdraw reads {FORMAT_VERSION}"
+        )
+    if not isinstance(meta.get("model"), dict):
+        raise BundleError(f"{path}: no 'model' config")
+    return meta
+
+
+def load(bundle_dir):
+    """Builds the model a bundle describes and fills in its arrays.
+
+    Returns:
+      ``(model in eval mode, model config dict)``.
+
+    Raises:
+      BundleError: naming the file, if the bundle is missing, corrupt, or its
+        arrays do not match the model its config describes.
+    """
+    from ml_collections import ConfigDict
+
+    from jdraw import model as M
+
+    bundle_dir = pathlib.Path(bundle_dir)
+    meta = read_meta(bundle_dir)
+    try:
+        mdl = M.build(ConfigDict(meta["model"]))
+    except (ValueError, TypeError, KeyError) as e:
+        raise BundleError(f"{bundle_dir / 'bundle.json'}: bad model config ({e})") from e
+    path = bundle_dir / "params.npz"
+    try:
+        with np.load(path) as z:
+            arrays = {k: z[k] for k in z.files}
+    except FileNotFoundError as e:
+        raise BundleError(f"{path}: missing") from e
+    except (zipfile.BadZipFile, ValueError, OSError, EOFError) as e:
+        raise BundleError(f"{path}: corrupt ({e})") from e
+    flat = nnx.to_flat_state(nnx.state(mdl))
+    expected = {_key(p) for p, _ in flat}
+    if set(arrays) != expected:
+        miss, extra = sorted(expected - set(arrays)), sorted(set(arrays) - expected)
+        raise BundleError(
+            f"{path}: arrays do not match the model (missing {miss[:3]}, unexpected {extra[:3]})"
+        )
+    for p, v in flat:
+        a = arrays[_key(p)]
+        if a.shape != v.shape:
+            raise BundleError(f"{path}: {_key(p)} has shape {a.shape}, the model needs {v.shape}")
+        v.set_value(a) if hasattr(v, "set_value") else setattr(v, "value", a)
+    nnx.update(mdl, nnx.from_flat_state(flat))
+    mdl.eval()
+    return mdl, meta["model"]

@@ -1,0 +1,138 @@
+"""The drawing state: one builder for training examples and for planning.
+
+The model never sees ground truth: every image below is a function of the
+target bitmap and of what the pen has done so far.
+
+Local state (paper §III-A), channels last:
+  0. ``X_env``: pixels already visited by the pen;
+  1. ``X_con``: target pixels in the same 8-connected component of the target
+     as the pen;
+  2. ``X_dif``: target pixels not yet visited.
+
+Global state (§III-B): ``X_loc`` (the pen, one-hot; all zero before the first
+stroke), ``X_env``, ``X_last`` (pixels visited since the last global move) and
+``X_dif``.
+"""
+
+from __future__ import annotations
+
+import cv2
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+CANVAS = 100
+LOCAL_CHANNELS = 3
+GLOBAL_CHANNELS = 4
+
+# Move index k <-> (dx, dy) = (k % 5 - 2, k // 5 - 2); index 12 is (0, 0).
+MOVES = np.stack(np.meshgrid(np.arange(-2, 3), np.arange(-2, 3)), -1).reshape(25, 2)
+STAY = 12
+
+
+def move_index(d) -> np.ndarray:
+    """Index ``[...]`` of moves ``d`` ``[..., 2]`` (dx, dy) in ``MOVES``."""
+    d = np.asarray(d)
+    return (d[..., 1] + 2) * 5 + (d[..., 0] + 2)
+
+
+def component_labels(target: np.ndarray) -> np.ndarray:
+    """8-connected component labels ``int32 [H, W]`` of ``target`` (0 = background)."""
+    n, labels = cv2.connectedComponents(np.asarray(target, np.uint8), connectivity=8)
+    del n
+    return labels.astype(np.int32)
+
+
+def midpoint(pen: jax.Array, d: jax.Array) -> jax.Array:
+    """The pixel a local move ``d`` (``|d| <= 2``) skips: same rule as :mod:`jdraw.raster`."""
+    return pen + jnp.sign(d) * (jnp.abs(d) // 2)
+
+
+def apply_move(visited: jax.Array, pen: jax.Array, d: jax.Array):
+    """Moves the pen down by ``d``; returns ``(visited, new_pen, n_new)``.
+
+    Args:
+      visited: ``bool [H, W]``.
+      pen: ``int32 [2]`` (x, y).
+      d: ``int32 [2]`` with ``|d| <= 2``.
+    """
+    mid = midpoint(pen, d)
+    end = pen + d
+    n_new = (~visited[mid[1], mid[0]]).astype(jnp.int32) + (~visited[end[1], end[0]]) * jnp.any(
+        end != mid
+    ).astype(jnp.int32)
+    visited = visited.at[mid[1], mid[0]].set(True).at[end[1], end[0]].set(True)
+    return visited, end, n_new
+
+
+def _local_channels(target, labels, visited, pen_label):
+    con = target & (labels == pen_label)
+    return jnp.stack([visited, con, target & ~visited], -1).astype(jnp.float32)
+
+
+def local_state(target, labels, visited, pen) -> jax.Array:
+    """Full local state ``float32 [H, W, 3]`` (env, con, dif)."""
+    return _local_channels(target, labels, visited, labels[pen[1], pen[0]])
+
+
+def _crop(img: jax.Array, pen: jax.Array, size: int, fill=0) -> jax.Array:
+    """``[size, size]`` crop centred at ``pen``, zero (``fill``) outside the image."""
+    h = size // 2
+    padded = jnp.pad(img, h, constant_values=fill)
+    return jax.lax.dynamic_slice(padded, (pen[1], pen[0]), (size, size))
+
+
+def local_window(target, labels, visited, pen, size: int):
+    """Local state on a ``size x size`` window centred on the pen.
+
+    Equals ``local_state`` cropped at ``pen`` with zeros outside the image.
+
+    Returns:
+      ``(window float32 [size, size, 3], inside bool [size, size])``, where
+      ``inside`` marks window pixels that lie on the canvas.
+    """
+    pen_label = labels[pen[1], pen[0]]
+    t = _crop(target, pen, size)
+    lab = _crop(labels, pen, size)
+    v = _crop(visited, pen, size)
+    inside = _crop(jnp.ones(target.shape, bool), pen, size)
+    return _local_channels(t, lab, v, pen_label), inside
+
+
+def global_state(target, visited, last, pen, has_pen) -> jax.Array:
+    """Global state ``float32 [H, W, 4]`` (loc, env, last, dif)."""
+    loc = jnp.zeros(target.shape, bool).at[pen[1], pen[0]].set(has_pen)
+    return jnp.stack([loc, visited, last, target & ~visited], -1).astype(jnp.float32)
+
+
+def allowed_moves(target: jax.Array, pen: jax.Array) -> jax.Array:
+    """``bool [25]``: moves that keep the pen, and the pixel it skips, on ink.
+
+    The stay move is never allowed: a pen-down step must go somewhere.
+    """
+    d = jnp.asarray(MOVES, jnp.int32)
+    end = pen[None] + d
+    mid = midpoint(pen[None], d)
+    h, w = target.shape
+    inb = (end[:, 0] >= 0) & (end[:, 0] < w) & (end[:, 1] >= 0) & (end[:, 1] < h)
+    endc = jnp.clip(end, 0, jnp.array([w - 1, h - 1]))
+    midc = jnp.clip(mid, 0, jnp.array([w - 1, h - 1]))
+    ok = inb & target[endc[:, 1], endc[:, 0]] & target[midc[:, 1], midc[:, 0]]
+    return ok.at[STAY].set(False)
+
+
+def allowed_starts(target, visited, only_unvisited) -> jax.Array:
+    """``bool [H, W]``: where a stroke may start.
+
+    Unvisited ink, or visited ink touching unvisited ink (strokes often start
+    on an earlier one). ``only_unvisited`` drops the latter, used after a
+    stroke that added nothing so that planning always progresses.
+    """
+    dif = target & ~visited
+    near = jax.lax.reduce_window(dif, False, jax.lax.bitwise_or, (3, 3), (1, 1), "SAME")
+    return jnp.where(only_unvisited, dif, target & near)
+
+
+def move_index_jnp(d: jax.Array) -> jax.Array:
+    """:func:`move_index` inside ``jit``."""
+    return (d[..., 1] + 2) * 5 + (d[..., 0] + 2)

@@ -1,0 +1,68 @@
+"""The planner's output."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from jdraw import raster
+
+
+@dataclasses.dataclass
+class Plan:
+    """Drawing plans for a batch of images.
+
+    Attributes:
+      strokes: one entry per image; each a list of ``[n, 2]`` float arrays of
+        (x, y) canvas points the pen visits while down, in drawing order.
+      actions: ``int32 [B, T, 3]`` (dx, dy, touch) as executed: ``touch=0`` is
+        a pen-up jump (the global model's move to a stroke start), ``touch=1``
+        a pen-down move that inks the segment (a lone ``(0, 0, 1)`` is a dot).
+        Rows past ``lengths`` are zero.
+      lengths: ``int32 [B]`` number of valid action rows.
+      truncated: ``bool [B]`` true where the step bound cut the plan short.
+    """
+
+    strokes: list[list[np.ndarray]]
+    actions: np.ndarray
+    lengths: np.ndarray
+    truncated: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.strokes)
+
+
+def strokes_from_actions(actions: np.ndarray, length: int, start=(0, 0)) -> list[np.ndarray]:
+    """Replays ``actions[:length]`` (``[T, 3]`` dx, dy, touch) into strokes.
+
+    The pen starts at ``start``; a run of ``touch=1`` rows is one stroke whose
+    points are the position before the run and after each of its moves.
+    """
+    pos = np.asarray(start, np.int64)
+    strokes: list[np.ndarray] = []
+    current: list[np.ndarray] | None = None
+    for dx, dy, touch in np.asarray(actions[:length], np.int64):
+        if touch:
+            if current is None:
+                current = [pos.copy()]
+            pos = pos + (dx, dy)
+            if dx or dy:
+                current.append(pos.copy())
+        else:
+            if current is not None:
+                strokes.append(np.asarray(current, np.float64))
+                current = None
+            pos = pos + (dx, dy)
+    if current is not None:
+        strokes.append(np.asarray(current, np.float64))
+    return strokes
+
+
+def render(plan: Plan, shape: tuple[int, int] = (raster.CANVAS, raster.CANVAS)) -> np.ndarray:
+    """Draws each image's strokes: ``bool [B, H, W]``."""
+    return (
+        np.stack([raster.render_strokes(s, shape) for s in plan.strokes])
+        if len(plan)
+        else (np.zeros((0, *shape), bool))
+    )

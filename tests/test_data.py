@@ -1,0 +1,73 @@
+import json
+
+import numpy as np
+import pytest
+
+import jdraw
+from jdraw import api, demo, kanji, raster
+
+
+def test_segment_pixels_is_8_connected_and_symmetric_rule():
+    for d in [(2, 1), (1, 2), (-2, 1), (-1, -2), (2, 2), (0, 2), (7, -3)]:
+        p = raster.segment_pixels((10, 10), np.add((10, 10), d))
+        assert np.max(np.abs(np.diff(p, axis=0))) == 1
+        assert tuple(p[-1]) == (10 + d[0], 10 + d[1])
+    # The local-move rule: the skipped pixel is a + sign(d) * (|d| // 2).
+    np.testing.assert_array_equal(raster.segment_pixels((5, 5), (6, 7))[1], (5, 6))
+    np.testing.assert_array_equal(raster.segment_pixels((5, 5), (4, 7))[1], (5, 6))
+
+
+def test_clean_path_is_thin_and_connected():
+    pts = np.array([[0, 0], [1, 0], [1, 1], [2, 1], [2, 2], [5, 2]])
+    p = demo.clean_path(pts)
+    assert np.max(np.abs(np.diff(p, axis=0))) == 1
+    # No staircase corners: path[i-1] and path[i+1] never touch.
+    assert np.all(np.max(np.abs(p[2:] - p[:-2]), axis=1) == 2)
+
+
+def test_split_file_is_the_rule(kanji_set):
+    spec = json.loads(kanji.SPLIT_FILE.read_text())
+    again = kanji.make_split(kanji_set.codes)
+    assert spec["test"] == again["test"] and spec["val"] == again["val"]
+    tr, va, te = (
+        set(kanji_set.codes[kanji.split_indices(kanji_set, s)]) for s in ("train", "val", "test")
+    )
+    assert not (tr & va) and not (tr & te) and not (va & te)
+    assert (
+        len(va) == 1000 and len(te) == 1000 and len(kanji.split_indices(kanji_set, "train")) > 7000
+    )
+    assert min(kanji_set.codes) >= kanji.FIRST_CODE  # no Latin letters in training
+
+
+def test_augmentation_is_seeded_and_stays_on_canvas(kanji_set):
+    a = demo.sample(kanji_set, 5, np.random.default_rng(3))
+    b = demo.sample(kanji_set, 5, np.random.default_rng(3))
+    c = demo.sample(kanji_set, 5, np.random.default_rng(4))
+    assert np.array_equal(a.target, b.target) and not np.array_equal(a.target, c.target)
+    for s in a.strokes:
+        assert s.min() >= 0 and s.max() < 100
+        assert np.max(np.abs(np.diff(s, axis=0)), initial=0) <= 2
+
+
+def test_demonstration_replays_losslessly_through_planner(kanji_set):
+    """500 random characters: the planner's state machine and renderer redraw each exactly."""
+    rng = np.random.default_rng(1)
+    idx = rng.choice(len(kanji_set), 500, replace=False)
+    demos = [demo.sample(kanji_set, i, rng) for i in idx]
+    plan = api.replay(demos)
+    drawn = jdraw.render(plan)
+    for d, img, strokes in zip(demos, drawn, plan.strokes):
+        assert jdraw.pixel_accuracy(d.target, img) == 1.0
+        per_stroke = np.stack([jdraw.render_strokes([s]) for s in strokes])
+        assert jdraw.stroke_accuracy(d.stroke_images(), per_stroke) == 1.0
+        assert len(strokes) == len(d.strokes)
+    assert not plan.truncated.any()
+    # The executed actions are the demonstration's own.
+    for d, a, n in zip(demos[:20], plan.actions, plan.lengths):
+        np.testing.assert_array_equal(a[:n], d.actions())
+
+
+@pytest.mark.parametrize("split", ["val", "test"])
+def test_held_out_splits_have_no_variants(kanji_set, split):
+    idx = kanji.split_indices(kanji_set, split)
+    assert not any("-" in str(n) for n in kanji_set.names[idx])

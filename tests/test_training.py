@@ -1,0 +1,114 @@
+"""Training with the tiny config: the loss falls, resuming equals not stopping, data parallel."""
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+from configs import tiny
+from jdraw import bundle, training
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _cfg(steps):
+    c = tiny.get_config()
+    c.train.num_steps = steps
+    c.train.checkpoint_every = 100
+    c.train.log_every = 1
+    return c
+
+
+@pytest.fixture(scope="module")
+def straight_run(tmp_path_factory):
+    wd = tmp_path_factory.mktemp("straight")
+    training.train(_cfg(16), wd, progress=False)
+    return wd
+
+
+def _final_arrays(wd):
+    return bundle.state_arrays(bundle.load(wd / "bundle")[0])
+
+
+def test_loss_falls(straight_run):
+    logs = [json.loads(x) for x in (straight_run / "metrics.jsonl").read_text().splitlines()]
+    losses = [r["loss"] for r in logs if "loss" in r]
+    assert len(losses) == 16
+    assert np.mean(losses[-4:]) < 0.8 * np.mean(losses[:4]), losses
+
+
+def test_resume_equals_uninterrupted(straight_run, tmp_path):
+    cfg = _cfg(16)
+    r1 = training.train(cfg, tmp_path, progress=False, stop_after=7)
+    assert r1["step"] == 7 and not r1["done"]
+    r2 = training.train(cfg, tmp_path, progress=False)
+    assert r2["step"] == 16 and r2["done"]
+    a, b = _final_arrays(straight_run), _final_arrays(tmp_path)
+    assert a.keys() == b.keys()
+    for k in a:
+        np.testing.assert_allclose(a[k], b[k], rtol=0, atol=1e-6, err_msg=k)
+    assert (
+        r2["strokes_seen"]
+        == json.loads((straight_run / "metrics.jsonl").read_text().splitlines()[-2])["strokes_seen"]
+    )
+
+
+def test_export_bundle_loads_and_plans(straight_run, tmp_path):
+    import jdraw
+    from jdraw import export
+
+    out = export.export(straight_run, tmp_path / "b")
+    meta = json.loads((out / "bundle.json").read_text())
+    assert meta["format_version"] == bundle.FORMAT_VERSION and meta["model"]["hidden"] == 16
+    img = np.zeros((100, 100), bool)
+    img[50, 20:80] = True
+    p = jdraw.plan(img, checkpoint=out, max_steps=200)
+    assert jdraw.pixel_accuracy(img, jdraw.render(p)[0]) == 1.0
+
+
+def test_two_devices_step_equals_one_device():
+    """One training step (gradients, batch-norm statistics) on a 2-device mesh equals one device."""
+    script = textwrap.dedent(
+        """
+        import numpy as np, jax, optax
+        from flax import nnx
+        from jax.sharding import Mesh, NamedSharding, PartitionSpec as P
+        from configs import tiny
+        from jdraw import kanji, model as M, training
+        assert len(jax.devices()) == 2
+        cfg = tiny.get_config()
+        ks = kanji.load(progress=False)
+        pool = kanji.split_indices(ks, "train")
+        batch, _ = training.make_batch(ks, pool, cfg, 0)
+        out = []
+        for devs in (jax.devices()[:1], jax.devices()):
+            m = M.build(cfg.model, seed=0); m.train()
+            g, params, rest = nnx.split(m, nnx.Param, ...)
+            tx = optax.sgd(0.1)  # Adam's first step is sign(g): ill-conditioned to compare
+            opt = tx.init(params)
+            mesh = Mesh(np.asarray(devs), ("data",))
+            rep = NamedSharding(mesh, P())
+            params, rest, opt = jax.device_put((params, rest, opt), rep)
+            step = training.make_step(g, tx, 1.0)
+            b = training.shard_batch(batch, mesh)
+            if len(devs) == 2:
+                assert len(b["local"]["target"].sharding.device_set) == 2
+            params, rest, opt, logs = step(params, rest, opt, b)
+            out.append((jax.tree.leaves(params) + jax.tree.leaves(rest), float(logs["loss"])))
+        (p1, l1), (p2, l2) = out
+        err = max(float(np.max(np.abs(np.asarray(a) - np.asarray(b)))) for a, b in zip(p1, p2))
+        print("loss", l1, l2, "max param diff", err)
+        assert abs(l1 - l2) < 1e-4 and err < 1e-5, (l1, l2, err)
+        """
+    )
+    env = dict(
+        os.environ, XLA_FLAGS="--xla_force_host_platform_device_count=2", JAX_PLATFORMS="cpu"
+    )
+    r = subprocess.run(
+        [sys.executable, "-c", script], cwd=ROOT, env=env, capture_output=True, text=True
+    )
+    assert r.returncode == 0, r.stdout + r.stderr[-3000:]

@@ -2,6 +2,7 @@
 
 from jdraw.api import load_model as load_model
 from jdraw.api import plan as plan
+from jdraw.export import export as export
 from jdraw.metrics import pixel_accuracy as pixel_accuracy
 from jdraw.metrics import stroke_accuracy as stroke_accuracy
 from jdraw.raster import render_strokes as render_strokes

@@ -95,9 +95,9 @@ def load_model(checkpoint=None):
     else:
         path = pathlib.Path(checkpoint)
         if not (path / "bundle.json").exists() and path.exists():
-            from jdraw import export as _export
+            from jdraw.export import bundle_for_workdir
 
-            path = _export.bundle_for_workdir(path)
+            path = bundle_for_workdir(path)
     if path is None:
         return _load(None, 0.0)
     meta = pathlib.Path(path) / "bundle.json"

@@ -398,9 +398,9 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
             signal.signal(signal.SIGTERM, old)
     result = {"step": step, "done": step >= total, **progress_state, **logs}
     if step >= total:
-        from jdraw import export as E
+        from jdraw.export import export
 
-        E.export(workdir, workdir / "bundle")
+        export(workdir, workdir / "bundle")
         v = validate(nnx.merge_state(params, rest), graphdef, ks, val_idx)
         result["val"] = v
         with open(log_path, "a") as f:

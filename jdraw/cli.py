@@ -1,0 +1,244 @@
+"""The ``jdraw`` command: ``jdraw draw IMAGE --svg out.svg --gcode out.gcode ...``."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+
+from jdraw import formats
+
+_DESCRIPTION = """\
+Plan how to draw a picture with a pen: a photo or scan of handwriting, a
+word, a sentence or a line drawing of any size. The image is binarised
+(either ink polarity, uneven lighting), thinned to centrelines, split into
+character-sized regions or tiles, planned stroke by stroke with the learned
+model, and written out in the image's own pixel coordinates.
+"""
+
+_EPILOG = """\
+examples:
+  jdraw draw hello.jpg --svg hello.svg --png hello_strokes.png
+  jdraw draw sketch.png --gcode sketch.gcode --preset servo --width-mm 150 --feed 2000
+  jdraw draw board.jpg --polarity light --json board.json
+
+exit status: 0 on success, 2 for bad arguments or an unusable image
+(missing, unreadable, unsupported format, blank).
+"""
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="jdraw",
+        description=_DESCRIPTION,
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    d = sub.add_parser(
+        "draw",
+        help="plan the strokes for an image and write SVG, G-code, JSON or PNG",
+        description=_DESCRIPTION,
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    d.add_argument(
+        "image", metavar="IMAGE", help="input image: PNG, JPEG, BMP, TIFF, WebP, PBM/PGM/PPM"
+    )
+    out = d.add_argument_group("outputs (any combination; with none, only a summary is printed)")
+    out.add_argument(
+        "--svg",
+        metavar="OUT",
+        help="SVG, one polyline per stroke in drawing order, viewBox = image pixels",
+    )
+    out.add_argument(
+        "--gcode", metavar="OUT", help="G-code for a pen plotter, millimetres (see --preset)"
+    )
+    out.add_argument(
+        "--json", metavar="OUT", help="JSON with the strokes and the pen-up moves between them"
+    )
+    out.add_argument(
+        "--png",
+        metavar="OUT",
+        help="PNG of the strokes coloured by order (blue first, red last), starts dotted",
+    )
+
+    im = d.add_argument_group("image")
+    im.add_argument(
+        "--polarity",
+        choices=("auto", "dark", "light"),
+        default="auto",
+        help="ink darker (dark) or lighter (light, e.g. chalk) than the ground; default: detect",
+    )
+    im.add_argument(
+        "--min-gap",
+        type=float,
+        default=4.0,
+        metavar="PX",
+        help="planner-canvas pixels kept between separate lines when scaling down (default: 4)",
+    )
+
+    pl = d.add_argument_group("planner")
+    pl.add_argument(
+        "--checkpoint",
+        metavar="PATH",
+        help="model bundle or training workdir (default: the bundled model)",
+    )
+    pl.add_argument(
+        "--max-steps",
+        type=int,
+        metavar="N",
+        help="action limit per 100x100 tile (default: the planner's)",
+    )
+    pl.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+    sz = d.add_argument_group("physical size (SVG and G-code)")
+    sz.add_argument(
+        "--width-mm",
+        type=float,
+        metavar="MM",
+        help="drawing width in mm (SVG: default pixels; G-code: default 100)",
+    )
+    sz.add_argument(
+        "--height-mm",
+        type=float,
+        metavar="MM",
+        help="drawing height in mm; with --width-mm the drawing fits inside both",
+    )
+
+    gc = d.add_argument_group("G-code")
+    gc.add_argument(
+        "--preset",
+        choices=sorted(formats.PRESETS),
+        default="zaxis",
+        help="pen lift: zaxis (G0 Z5 / G1 Z0), servo (M3 S90 down, M5 up, with a dwell), "
+        "servo-s (M3 S90 down, M3 S30 up); default: zaxis",
+    )
+    gc.add_argument(
+        "--feed", type=float, metavar="MM/MIN", help="drawing feed rate (default: 1500)"
+    )
+    gc.add_argument(
+        "--travel-feed",
+        type=float,
+        metavar="MM/MIN",
+        help="pen-up moves as G1 at this feed (default: G0 rapid moves)",
+    )
+    gc.add_argument(
+        "--pen-up",
+        metavar="GCODE",
+        help=r"pen-up template replacing the preset's, lines separated by \n; fields like {z_up}",
+    )
+    gc.add_argument(
+        "--pen-down",
+        metavar="GCODE",
+        help=r"pen-down template replacing the preset's, e.g. 'M3 S40\nG4 P0.2'",
+    )
+    gc.add_argument(
+        "--z-up", type=float, metavar="MM", help="zaxis preset: pen-up height (default: 5)"
+    )
+    gc.add_argument(
+        "--z-down", type=float, metavar="MM", help="zaxis preset: pen-down height (default: 0)"
+    )
+    gc.add_argument(
+        "--origin-mm",
+        type=float,
+        nargs=2,
+        default=(0.0, 0.0),
+        metavar=("X", "Y"),
+        help="machine position of the drawing's bottom-left corner (default: 0 0)",
+    )
+    return p
+
+
+def _fail(msg: str) -> int:
+    print(f"jdraw: error: {msg}", file=sys.stderr)
+    return 2
+
+
+def _draw(args) -> int:
+    from jdraw import image as jimage
+    from jdraw import tiling
+
+    outputs = [args.svg, args.gcode, args.json, args.png]
+    for o in outputs:
+        if o and os.path.dirname(o) and not os.path.isdir(os.path.dirname(o)):
+            return _fail(f"cannot write {o!r}: no such directory")
+    if args.max_steps is not None and args.max_steps < 1:
+        return _fail("--max-steps must be positive")
+    if args.min_gap <= 0:
+        return _fail("--min-gap must be positive")
+    t0 = time.perf_counter()
+    try:
+        img = jimage.load_image(args.image)
+        result = tiling.plan_image(
+            img,
+            checkpoint=args.checkpoint,
+            max_steps=args.max_steps,
+            polarity=args.polarity,
+            min_gap=args.min_gap,
+            progress=not args.no_progress,
+        )
+    except jimage.BlankImageError as e:
+        return _fail(f"{args.image}: {e}; nothing to draw")
+    except jimage.ImageError as e:
+        return _fail(str(e))
+    shape, strokes = result.shape, result.strokes
+    try:
+        if args.svg:
+            svg = formats.to_svg(strokes, shape, width_mm=args.width_mm, height_mm=args.height_mm)
+            formats.write_text(svg, args.svg)
+        if args.gcode:
+            overrides = {
+                "feed": args.feed,
+                "travel_feed": args.travel_feed,
+                "pen_up": args.pen_up,
+                "pen_down": args.pen_down,
+                "z_up": args.z_up,
+                "z_down": args.z_down,
+            }
+            code = formats.to_gcode(
+                strokes,
+                shape,
+                preset=args.preset,
+                width_mm=args.width_mm,
+                height_mm=args.height_mm,
+                origin_mm=tuple(args.origin_mm),
+                **overrides,
+            )
+            formats.write_text(code, args.gcode)
+        if args.json:
+            formats.write_json(formats.to_json(strokes, shape), args.json)
+        if args.png:
+            from jdraw import viz
+
+            scale = min(4.0, 800.0 / max(shape))
+            viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale)
+    except (KeyError, ValueError, IndexError) as e:
+        return _fail(f"bad G-code template or size: {e}")
+    except OSError as e:
+        return _fail(f"cannot write output: {e}")
+    h, w = shape
+    msg = (
+        f"{args.image}: {w}x{h} px, {len(strokes)} strokes, {len(result.tiles)} tile(s), "
+        f"pen-down length {result.pen_down_length():.0f} px, {time.perf_counter() - t0:.1f} s"
+    )
+    if result.truncated:
+        msg += f"; {result.truncated} tile(s) hit --max-steps ({result.completed_pixels} px traced)"
+    print(msg)
+    if not any(outputs):
+        print("no output requested: add --svg, --gcode, --json or --png", file=sys.stderr)
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Runs the command line; returns the exit status."""
+    args = _parser().parse_args(argv)
+    if args.command == "draw":
+        return _draw(args)
+    return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,114 @@
+"""Drawings beyond one canvas: layout, stitching across tile borders, reading order."""
+
+import numpy as np
+import pytest
+
+from jdraw import image as im
+from jdraw import raster, tiling
+from jdraw.types import Plan
+
+TOL_PX = 4.0
+MIN_SCORE = 0.95
+
+
+def wave(length=900.0, amplitude=110.0, periods=3.5, x0=40.0, y0=150.0):
+    """One long stroke that does not cross itself: a word's worth of humps."""
+    t = np.linspace(0.0, 1.0, 800)
+    return np.stack([x0 + length * t, y0 + amplitude * np.sin(2 * np.pi * periods * t)], 1)
+
+
+def reversing_planner(images, **kwargs):
+    """Plans like :func:`tiling.trace_planner`, then draws every tile backwards."""
+    plan = tiling.trace_planner(images, **kwargs)
+    strokes = [[s[::-1] for s in tile[::-1]] for tile in plan.strokes]
+    return Plan(strokes, plan.actions, plan.lengths, plan.truncated)
+
+
+@pytest.mark.parametrize("planner", [tiling.trace_planner, reversing_planner])
+@pytest.mark.parametrize("light", [False, True])
+def test_stroke_crossing_tile_borders_stays_one_polyline(planner, light):
+    line = wave()
+    img = im.photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
+    result = tiling.plan_image(img, planner=planner, progress=False)
+    cols = {round(t.transform.offset[0]) for t in result.tiles}
+    rows = {round(t.transform.offset[1]) for t in result.tiles}
+    assert len(cols) >= 4 and len(rows) >= 2  # the stroke crosses vertical and horizontal borders
+    assert len(result.strokes) == 1
+    assert result.border_joins >= len(result.tiles) - 1 and result.border_breaks == 0
+    precision, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
+    assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)
+    # In input pixel coordinates, in one motion from one end of the wave to the other.
+    ends = result.strokes[0][[0, -1]]
+    gaps = np.linalg.norm(ends[:, None] - line[None, [0, -1]], axis=-1)
+    assert min(gaps[0, 0] + gaps[1, 1], gaps[0, 1] + gaps[1, 0]) < 2 * TOL_PX
+
+
+def test_sentence_photo_any_size_in_reading_order():
+    lines, shape = im.text_centrelines("hello world", 4.0)
+    img = im.photo_like(lines, shape, width=9, gradient=0.6, noise=0.08, seed=5)
+    result = tiling.plan_image(img, planner=tiling.trace_planner, progress=False)
+    assert len(result.tiles) > 1 and result.shape == shape
+    precision, recall = im.centreline_scores(result.strokes, lines, TOL_PX)
+    assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)
+    starts = np.array([s[:, 0].mean() for s in result.strokes])
+    # Left to right: the words' strokes come in order of position, up to a letter's width.
+    assert np.all(np.diff(starts) > -0.1 * shape[1])
+    boxes = np.array(result.regions)
+    assert np.all(np.diff((boxes[:, 0] + boxes[:, 2]) / 2) > 0)
+
+
+def test_small_drawing_fits_one_canvas():
+    lines, shape = im.text_centrelines("R", 2.0, script=False)
+    img = im.photo_like(lines, shape, width=3, noise=0.03)
+    result = tiling.plan_image(img, planner=tiling.trace_planner, progress=False)
+    assert len(result.tiles) == 1
+    ys, xs = np.nonzero(result.tiles[0].image)
+    assert max(np.ptp(xs), np.ptp(ys)) == pytest.approx(80, abs=2)
+    precision, recall = im.centreline_scores(result.strokes, lines, TOL_PX)
+    assert precision >= MIN_SCORE and recall >= MIN_SCORE
+
+
+def test_stitch_joins_only_across_tiles():
+    a = np.array([[95, 5], [96, 5], [97, 5], [98, 5], [99, 5]])
+    b = np.array([[103, 6], [102, 5], [101, 5], [100, 5]])  # drawn towards the border
+    c = np.array([[99, 6], [98, 7]])  # touches a's end but lies in a's tile
+    joined = tiling.stitch([(0, a), (1, b), (0, c)])
+    assert len(joined) == 2
+    np.testing.assert_array_equal(joined[0], np.concatenate([a, b[::-1]]))
+    np.testing.assert_array_equal(joined[1], c)
+    # The earliest piece sets the direction even when it is the second in the chain.
+    joined = tiling.stitch([(1, b), (0, a)])
+    np.testing.assert_array_equal(joined[0], np.concatenate([b, a[::-1]]))
+
+
+def test_reading_order_lines_then_left_to_right():
+    boxes = [
+        (300, 10, 360, 60),  # line 1, right
+        (10, 110, 60, 160),  # line 2, left
+        (12, 12, 70, 58),  # line 1, left
+        (45, 0, 50, 5),  # a dot above line 1's left word
+        (200, 105, 260, 150),  # line 2, right
+    ]
+    assert tiling._reading_order(boxes) == [2, 3, 0, 1, 4]  # the dot by its centre
+
+
+def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():
+    calls = []
+
+    def forgetful(images, **kwargs):
+        calls.append((images.shape, images.dtype))
+        plan = tiling.trace_planner(images)
+        strokes = [s[:-1] if len(s) > 1 else s for s in plan.strokes]
+        return Plan(strokes, plan.actions, plan.lengths, np.ones(len(images), bool))
+
+    line = wave()
+    img = im.photo_like([line], (300, 980), width=6, noise=0.04)
+    result = tiling.plan_image(img, planner=forgetful, batch_size=4, progress=False)
+    n = len(result.tiles)
+    assert all(s[1:] == (100, 100) and s[0] in (1, 2, 4) and d == np.dtype(bool) for s, d in calls)
+    assert sum(min(4, n - 4 * i) for i in range(len(calls))) == n
+    assert result.truncated == n and result.completed_pixels > 0
+    _, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
+    assert recall >= MIN_SCORE
+    drawn = raster.render_strokes(result.strokes, result.shape)
+    assert drawn.any()

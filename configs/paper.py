@@ -21,7 +21,9 @@ def get_config() -> ml_collections.ConfigDict:
     c = ml_collections.ConfigDict()
     c.name = "paper"
     c.seed = 0
-    c.model = ml_collections.ConfigDict(dict(hidden=256, core="lstm", extraction="late"))
+    c.model = ml_collections.ConfigDict(
+        dict(hidden=256, core="lstm", extraction="late", kind="two_scale")
+    )
     c.data = ml_collections.ConfigDict(dict(augment=1.0))
     c.train = ml_collections.ConfigDict(
         dict(

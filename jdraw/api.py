@@ -105,11 +105,15 @@ def load_model(checkpoint=None):
 
 
 @functools.lru_cache(maxsize=16)
-def _planner(graphdef, limits: planner.Limits, local_encoding: str):
+def _planner(graphdef, limits: planner.Limits, local_encoding: str, kind: str = "two_scale"):
     policy = planner.model_policy(local_encoding)
 
     def one(st, target, labels):
         model = nnx.merge(graphdef, st)
+        if kind == "global_only":
+            from jdraw import global_only
+
+            return global_only.run(model, target, limits.max_steps)
         return planner.run(policy, model, (), target, labels, limits)
 
     def many(st, targets, labels):
@@ -144,7 +148,8 @@ def plan(
     model = load_model(checkpoint)
     graphdef, st = nnx.split(model)
     labels = np.stack([state.component_labels(t) for t in targets])
-    out = _planner(graphdef, limits, local_encoding)(st, jnp.asarray(targets), jnp.asarray(labels))
+    fn = _planner(graphdef, limits, local_encoding, getattr(model, "kind", "two_scale"))
+    out = fn(st, jnp.asarray(targets), jnp.asarray(labels))
     actions = np.asarray(out.actions)
     lengths = np.asarray(out.length)
     strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]

@@ -182,6 +182,9 @@ class DrawModel(nnx.Module):
       core: ``"lstm"`` or ``"fc"`` (ablation a).
       extraction: ``"late"`` (the paper's model) or ``"initial"`` (ablation b:
         cut a 5x5 patch of the state first, then encode it).
+      kind: ``"two_scale"`` (the paper's model) or ``"global_only"`` (ablation
+        c: the global model looped on itself, with a touch head; see
+        :mod:`jdraw.global_only`).
     """
 
     def __init__(
@@ -191,13 +194,17 @@ class DrawModel(nnx.Module):
         blocks: Sequence[Sequence[int]] = BLOCKS,
         core: str = "lstm",
         extraction: str = "late",
+        kind: str = "two_scale",
         rngs: nnx.Rngs,
     ):
         if core not in ("lstm", "fc"):
             raise ValueError(f"core must be 'lstm' or 'fc', got {core!r}")
         if extraction not in ("late", "initial"):
             raise ValueError(f"extraction must be 'late' or 'initial', got {extraction!r}")
+        if kind not in ("two_scale", "global_only"):
+            raise ValueError(f"kind must be 'two_scale' or 'global_only', got {kind!r}")
         self.extraction = extraction
+        self.kind = kind
         self.trunk = Trunk(blocks, rngs)
         width = self.trunk.blocks[-1][1]
         self.local_first = ConvParams(LOCAL_CHANNELS, self.trunk.blocks[0][0], 3, rngs)
@@ -209,6 +216,8 @@ class DrawModel(nnx.Module):
         self.global_first = ConvParams(GLOBAL_CHANNELS, self.trunk.blocks[0][0], 3, rngs)
         self.global_norms = Norms(self.trunk.blocks, rngs)
         self.global_head = ConvParams(width, 1, 1, rngs)
+        # Ablation (c) decides pen up/down from pooled global features.
+        self.global_touch = nnx.Linear(2 * width, 1, rngs=rngs) if kind == "global_only" else None
 
     @property
     def window(self) -> int:
@@ -239,11 +248,12 @@ class DrawModel(nnx.Module):
 
 
 def build(cfg, seed: int = 0) -> DrawModel:
-    """A model from a config's ``model`` section (``hidden``, ``core``, ``extraction``)."""
+    """A model from a config's ``model`` section (hidden, core, extraction, kind)."""
     return DrawModel(
         hidden=int(cfg.hidden),
         blocks=tuple(tuple(b) for b in cfg.get("blocks", BLOCKS)),
         core=str(cfg.get("core", "lstm")),
         extraction=str(cfg.get("extraction", "late")),
+        kind=str(cfg.get("kind", "two_scale")),
         rngs=nnx.Rngs(seed),
     )

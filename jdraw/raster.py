@@ -14,8 +14,9 @@ import numpy as np
 CANVAS = 100
 
 
-def _round_half_toward_zero(v: np.ndarray) -> np.ndarray:
-    return (np.sign(v) * np.ceil(np.abs(v) - 0.5)).astype(np.int64)
+def _div_round_half_toward_zero(m: np.ndarray, n: int) -> np.ndarray:
+    """``m / n`` rounded half toward zero, exactly, for integers ``m`` and ``n > 0``."""
+    return np.sign(m) * ((2 * np.abs(m) + n - 1) // (2 * n))
 
 
 def segment_pixels(a, b) -> np.ndarray:
@@ -40,7 +41,7 @@ def segment_pixels(a, b) -> np.ndarray:
     if n == 0:
         return a[None]
     k = np.arange(n + 1)[:, None]
-    return a[None] + _round_half_toward_zero(k * d[None] / n)
+    return a[None] + _div_round_half_toward_zero(k * d[None], n)
 
 
 def polyline_pixels(points) -> np.ndarray:

@@ -96,8 +96,14 @@ def global_loss(model: M.DrawModel, g: dict):
 
 def make_step(graphdef, tx, global_weight: float):
     def loss_fn(model):
-        ll, lm = local_loss(model, batch_ref[0]["local"])
-        gl, gm = global_loss(model, batch_ref[0]["global"])
+        b = batch_ref[0]
+        if "global_only" in b:
+            from jdraw import global_only
+
+            loss, logs = global_only.loss(model, b["global_only"])
+            return loss, {"loss": loss, **logs}
+        ll, lm = local_loss(model, b["local"])
+        gl, gm = global_loss(model, b["global"])
         loss = ll + global_weight * gl
         return loss, {"loss": loss, "local_loss": ll, "global_loss": gl, **lm, **gm}
 
@@ -135,6 +141,11 @@ def make_batch(ks, pool, cfg, step: int) -> dict:
     """The batch of ``step``: a pure function of ``(cfg.seed, step)``."""
     rng = np.random.default_rng([int(cfg.seed), int(step)])
     t = cfg.train
+    if cfg.model.get("kind", "two_scale") == "global_only":
+        from jdraw import global_only
+
+        g = global_only.batch(ks, pool, rng, size=t.global_batch, strength=cfg.data.augment)
+        return {"global_only": g}, t.global_batch  # each sample is an action of one stroke
     lb = batches.local_batch(
         ks,
         pool,
@@ -366,12 +377,10 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
                 with open(log_path, "a") as f:
                     f.write(json.dumps(rec) + "\n")
                 if bar is not None:
-                    bar.set_postfix(
-                        loss=f"{logs['loss']:.3f}",
-                        mv=f"{logs['acc_move']:.3f}",
-                        st=f"{logs['acc_start']:.2f}",
-                        strokes_s=f"{rate:.1f}",
-                    )
+                    shown = {
+                        k: f"{logs[k]:.3f}" for k in ("loss", "acc_move", "acc_start") if k in logs
+                    }
+                    bar.set_postfix(**shown, strokes_s=f"{rate:.1f}")
                 del t0
             if bar is not None:
                 bar.update(1)

@@ -1,0 +1,32 @@
+"""Ablation (c): the looped global model's segment rasteriser and raw actions."""
+
+import jax.numpy as jnp
+import numpy as np
+
+from jdraw import demo, global_only, raster
+
+
+def test_draw_segment_matches_raster_rule():
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        a, b = rng.integers(0, 100, (2, 2))
+        img = np.asarray(
+            global_only.draw_segment(jnp.zeros((100, 100), bool), jnp.asarray(a), jnp.asarray(b))
+        )
+        ref = np.zeros((100, 100), bool)
+        p = raster.segment_pixels(a, b)
+        ref[p[:, 1], p[:, 0]] = True
+        np.testing.assert_array_equal(img, ref)
+
+
+def test_raw_actions_start_each_stroke_pen_up(kanji_set):
+    d = demo.sample(kanji_set, 3)
+    acts = global_only.raw_actions(d, np.random.default_rng(0))
+    starts = [a for a in acts if a[1] == 0]
+    assert len(starts) == len(d.strokes)
+    for p, _, s in starts:
+        np.testing.assert_array_equal(p, d.strokes[s][0])
+    # Each stroke ends at its last pen position.
+    for s, st in enumerate(d.strokes):
+        last = [a for a in acts if a[2] == s][-1]
+        np.testing.assert_array_equal(last[0], st[-1])

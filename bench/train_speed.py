@@ -1,0 +1,69 @@
+"""Training throughput of a config: strokes/s and global samples/s per step.
+
+  python bench/train_speed.py [--config configs/paper.py] [--steps 20]
+
+Times jitted training steps on prepared batches (data making excluded, it
+runs in a background thread during training) and, separately, the host-side
+batch making. Prints a table.
+"""
+
+import argparse
+import importlib.util
+import time
+
+import jax
+import numpy as np
+import optax
+from flax import nnx
+
+from jdraw import kanji, training
+from jdraw import model as M
+
+
+def load_config(path):
+    spec = importlib.util.spec_from_file_location("cfg", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.get_config()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--config", default="configs/paper.py")
+    ap.add_argument("--steps", type=int, default=20)
+    args = ap.parse_args()
+    cfg = load_config(args.config)
+    ks = kanji.load()
+    pool = kanji.split_indices(ks, "train")
+    t = time.perf_counter()
+    made = [training.make_batch(ks, pool, cfg, s) for s in range(args.steps)]
+    t_data = (time.perf_counter() - t) / args.steps
+    m = M.build(cfg.model, seed=0)
+    m.train()
+    g, params, rest = nnx.split(m, nnx.Param, ...)
+    tx = optax.adam(cfg.train.learning_rate)
+    opt = tx.init(params)
+    step = training.make_step(g, tx, float(cfg.train.global_weight))
+    mesh = training.data_mesh()
+    batches = [training.shard_batch(b, mesh) for b, _ in made]
+    params, rest, opt, logs = step(params, rest, opt, batches[0])  # compile
+    jax.block_until_ready(logs)
+    t = time.perf_counter()
+    for b in batches:
+        params, rest, opt, logs = step(params, rest, opt, b)
+    jax.block_until_ready(logs)
+    dt = (time.perf_counter() - t) / args.steps
+    strokes = np.mean([n for _, n in made])
+    glob = cfg.train.global_batch
+    print(f"config {args.config}: {jax.device_count()} device(s), {args.steps} steps")
+    print(
+        f"{'step s':>8} | {'strokes/step':>12} | {'strokes/s':>9} | {'global/s':>8} | {'data s/step':>11}"
+    )
+    print("-" * 62)
+    print(
+        f"{dt:>8.3f} | {strokes:>12.1f} | {strokes / dt:>9.1f} | {glob / dt:>8.1f} | {t_data:>11.3f}"
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -56,13 +56,11 @@ def main():
     strokes = np.mean([n for _, n in made])
     glob = cfg.train.global_batch
     print(f"config {args.config}: {jax.device_count()} device(s), {args.steps} steps")
-    print(
-        f"{'step s':>8} | {'strokes/step':>12} | {'strokes/s':>9} | {'global/s':>8} | {'data s/step':>11}"
-    )
-    print("-" * 62)
-    print(
-        f"{dt:>8.3f} | {strokes:>12.1f} | {strokes / dt:>9.1f} | {glob / dt:>8.1f} | {t_data:>11.3f}"
-    )
+    cols = ["step s", "strokes/step", "strokes/s", "global/s", "data s/step"]
+    vals = [dt, strokes, strokes / dt, glob / dt, t_data]
+    print(" | ".join(f"{c:>12}" for c in cols))
+    print("-" * (15 * len(cols)))
+    print(" | ".join(f"{v:>12.3f}" for v in vals))
 
 
 if __name__ == "__main__":

@@ -8,8 +8,8 @@ run resumes from its last Orbax checkpoint if started again with the same
 command. Result: README's Table I row 1 (measured by eval.py).
 
 Budget: the paper fed 100,000 stroke samples to each model in Table I. A step
-packs whole strokes into 512 encoder windows (about 30 strokes; the KanjiVG
-strokes average 17 local steps), so 3,400 steps feed about 100,000 strokes;
+packs whole strokes into 512 encoder windows (about 28 strokes; the KanjiVG
+strokes average 17 local steps), so 3,600 steps feed about 100,000 strokes;
 the run logs the exact count (strokes_seen). Each step also trains the
 global model on 8 stroke starts.
 """
@@ -34,7 +34,7 @@ def get_config() -> ml_collections.ConfigDict:
             strokes_per_char=4,
             global_batch=8,
             global_weight=1.0,
-            num_steps=3400,
+            num_steps=3600,
             log_every=20,
             checkpoint_every=200,
         )

@@ -1,0 +1,15 @@
+"""Robot in the loop: an MJX arm draws each plan and reports what came out.
+
+``verify(plan)`` maps the plan's strokes onto a sheet on the table, solves IK
+for the pen tip along the timed path, simulates the arm tracking it with MJX
+and rasterises where the nib touched the paper.
+"""
+
+from jdraw.robot.model import canvas_to_world as canvas_to_world
+from jdraw.robot.model import load as load_model  # noqa: F401
+from jdraw.robot.model import world_to_canvas as world_to_canvas
+from jdraw.robot.options import RobotOptions as RobotOptions
+from jdraw.robot.trajectory import tip_path as tip_path
+from jdraw.robot.verifier import Report as Report
+from jdraw.robot.verifier import arm as arm
+from jdraw.robot.verifier import verify as verify

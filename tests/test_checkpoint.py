@@ -1,0 +1,50 @@
+"""The bundled checkpoint loads, plans held-out characters well, and draws the README example."""
+
+import pathlib
+
+import numpy as np
+import pytest
+
+import jdraw
+from jdraw import bundle, demo, kanji, training
+
+EXAMPLE = pathlib.Path(__file__).parent.parent / "examples" / "images" / "kanji.png"
+STROKE_ACC_FLOOR = 0.90  # on 16 test characters; eval.py measures the full figure
+
+
+def test_bundled_checkpoint_is_present_and_trained():
+    meta = bundle.read_meta(bundle.DEFAULT_BUNDLE)
+    assert meta["provenance"].get("step", 0) > 0
+    assert meta["provenance"].get("strokes_seen", 0) >= 90_000
+
+
+@pytest.mark.parametrize("seed", [0])
+def test_bundled_checkpoint_draws_held_out_characters(kanji_set, seed):
+    rng = np.random.default_rng(seed)
+    idx = rng.choice(kanji.split_indices(kanji_set, "test"), 16, replace=False)
+    demos = [demo.sample(kanji_set, int(i)) for i in idx]
+    plan = jdraw.plan(np.stack([d.target for d in demos]))
+    s = training.score(demos, plan)
+    assert s["pixel_acc"] == 1.0 and s["truncated"] == 0.0
+    assert s["stroke_acc"] >= STROKE_ACC_FLOOR, s
+
+
+def test_readme_example_plans(tmp_path):
+    from jdraw import cli
+
+    png, svg = tmp_path / "s.png", tmp_path / "s.svg"
+    assert (
+        cli.main(
+            [
+                "draw",
+                str(EXAMPLE),
+                "--png",
+                str(png),
+                "--svg",
+                str(svg),
+                "--no-progress",
+            ]
+        )
+        == 0
+    )
+    assert png.stat().st_size > 0 and "<polyline" in svg.read_text()

@@ -112,3 +112,21 @@ def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():
     assert recall >= MIN_SCORE
     drawn = raster.render_strokes(result.strokes, result.shape)
     assert drawn.any()
+
+
+@pytest.mark.parametrize("light", [False, True])
+def test_trained_planner_does_not_shred_a_word_at_tile_borders(light):
+    """With the bundled model the wave is a few strokes, never one fragment per tile.
+
+    The model lifts the pen inside tiles (it starts strokes at the tops of
+    the humps, as KanjiVG strokes start), so the wave is not yet one polyline
+    (6-7 strokes over 12 tiles when this was written); this bounds it.
+    """
+    line = wave()
+    img = im.photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
+    result = tiling.plan_image(img, progress=False)
+    assert len(result.tiles) >= 8
+    assert result.border_joins >= len(result.tiles) - 1
+    assert len(result.strokes) < len(result.tiles), len(result.strokes)
+    precision, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
+    assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)

@@ -93,6 +93,17 @@ def local_batch(
     return out
 
 
+def global_state_arrays(size: int, **labels) -> dict:
+    """Zeroed inputs of :func:`jdraw.state.global_state` for ``size`` samples, plus labels.
+
+    ``labels`` maps a name to the dtype of a ``[size]`` label array.
+    """
+    out = {k: np.zeros((size, CANVAS, CANVAS), bool) for k in ("target", "visited", "last")}
+    out.update(pen=np.zeros((size, 2), np.int32), has_pen=np.zeros(size, bool))
+    out.update({k: np.zeros(size, t) for k, t in labels.items()})
+    return out
+
+
 def global_batch(
     ks: KanjiSet, pool: np.ndarray, rng: np.random.Generator, *, size: int, strength: float
 ) -> dict:
@@ -102,14 +113,7 @@ def global_batch(
     ``pen`` int32 [G, 2], ``has_pen`` bool [G], ``start`` int32 [G] (flat
     index ``y * 100 + x``).
     """
-    out = {
-        "target": np.zeros((size, CANVAS, CANVAS), bool),
-        "visited": np.zeros((size, CANVAS, CANVAS), bool),
-        "last": np.zeros((size, CANVAS, CANVAS), bool),
-        "pen": np.zeros((size, 2), np.int32),
-        "has_pen": np.zeros(size, bool),
-        "start": np.zeros(size, np.int32),
-    }
+    out = global_state_arrays(size, start=np.int32)
     for g in range(size):
         d = D.sample(ks, int(rng.choice(pool)), rng, strength)
         i = int(rng.integers(len(d.strokes)))

@@ -2,21 +2,10 @@
 
 from __future__ import annotations
 
-import colorsys
-
 import cv2
 import numpy as np
 
-
-def order_colours(n: int) -> np.ndarray:
-    """``uint8 [n, 3]`` RGB colours running through the hues in drawing order."""
-    return np.asarray(
-        [
-            [int(255 * c) for c in colorsys.hsv_to_rgb(0.8 * i / max(n - 1, 1), 0.85, 0.9)]
-            for i in range(n)
-        ],
-        np.uint8,
-    ).reshape(-1, 3)
+from jdraw import viz
 
 
 def _canvas(shape, scale):
@@ -28,27 +17,13 @@ def _pt(p, scale):
 
 
 def strokes_panel(strokes, shape=(100, 100), scale: int = 4, target=None) -> np.ndarray:
-    """RGB picture of strokes, coloured by order, each start marked by a dot.
+    """RGB picture of strokes coloured by order (blue first, red last), each start dotted.
 
     Args:
       strokes: list of ``[n, 2]`` (x, y) points.
       target: optional ``bool [H, W]`` drawn in light grey underneath.
     """
-    img = _canvas(shape, scale)
-    if target is not None:
-        t = cv2.resize(
-            np.asarray(target, np.uint8),
-            (shape[1] * scale, shape[0] * scale),
-            interpolation=cv2.INTER_NEAREST,
-        ).astype(bool)
-        img[t] = (225, 225, 225)
-    cols = order_colours(len(strokes))
-    for s, c in zip(strokes, cols):
-        c = tuple(int(v) for v in c)
-        pts = np.array([_pt(p, scale) for p in s], np.int32).reshape(-1, 1, 2)
-        cv2.polylines(img, [pts], False, c, max(1, scale // 2), cv2.LINE_AA)
-        cv2.circle(img, tuple(pts[0, 0]), max(2, scale), c, -1, cv2.LINE_AA)
-    return img
+    return viz.draw_strokes_png(target, strokes, None, scale=scale, shape=shape)
 
 
 def trace_panel(strokes, shape=(100, 100), scale: int = 4) -> np.ndarray:

@@ -21,6 +21,7 @@ import optax
 from jdraw import demo as D
 from jdraw import raster
 from jdraw import state as S
+from jdraw.batches import global_state_arrays
 
 CANVAS = raster.CANVAS
 RAW_SPACING = (3, 5)  # raw points every 3-4 pen positions (about 5-8 pixels)
@@ -53,15 +54,7 @@ def batch(ks, pool, rng, *, size: int, strength: float) -> dict:
     ``pen`` int32 [G, 2], ``has_pen`` bool [G], ``goal`` int32 [G] (flat
     index ``y * 100 + x``), ``touch`` float32 [G].
     """
-    out = {
-        "target": np.zeros((size, CANVAS, CANVAS), bool),
-        "visited": np.zeros((size, CANVAS, CANVAS), bool),
-        "last": np.zeros((size, CANVAS, CANVAS), bool),
-        "pen": np.zeros((size, 2), np.int32),
-        "has_pen": np.zeros(size, bool),
-        "goal": np.zeros(size, np.int32),
-        "touch": np.zeros(size, np.float32),
-    }
+    out = global_state_arrays(size, goal=np.int32, touch=np.float32)
     for g in range(size):
         d = D.sample(ks, int(rng.choice(pool)), rng, strength)
         acts = raw_actions(d, rng)
@@ -138,7 +131,7 @@ def run(model, target, max_steps: int, max_idle: int = 16):
         pos, touch = heads(model, x[None])
         idx = jnp.argmax(jnp.where(target, pos[0], -jnp.inf).reshape(-1))
         p = jnp.stack([idx % CANVAS, idx // CANVAS]).astype(jnp.int32)
-        down = touch[0] > 0
+        down = (touch[0] > 0) & has_pen  # the pen is first put somewhere, lifted
         v2 = jnp.where(down, draw_segment(visited, pen, p), visited)
         new = jnp.sum(v2 & ~visited)
         last = jnp.where(down, draw_segment(last, pen, p), jnp.zeros_like(last))

@@ -30,3 +30,21 @@ def test_raw_actions_start_each_stroke_pen_up(kanji_set):
     for s, st in enumerate(d.strokes):
         last = [a for a in acts if a[2] == s][-1]
         np.testing.assert_array_equal(last[0], st[-1])
+
+
+def test_global_only_trains_and_plans(tmp_path):
+    import jdraw
+    from configs import tiny
+    from jdraw import training
+
+    cfg = tiny.get_config()
+    cfg.model.kind = "global_only"
+    cfg.train.num_steps = 3
+    r = training.train(cfg, tmp_path, progress=False)
+    assert r["done"] and np.isfinite(r["loss"])
+    img = np.zeros((100, 100), bool)
+    img[30, 20:60] = True
+    p = jdraw.plan(img, checkpoint=tmp_path / "bundle", max_steps=40)
+    assert p.lengths[0] <= 40
+    drawn = jdraw.render(p)[0]
+    assert not (drawn & ~img).any()  # pen-down moves stay between ink pixels on a line

@@ -174,7 +174,10 @@ class Prefetcher:
     def _run(self):
         s = self._next
         while s < self._stop and not self._halt.is_set():
-            item = (s, *self._fn(s))
+            try:
+                item = (s, *self._fn(s))
+            except Exception as e:  # handed to the training loop, which re-raises it
+                item = (s, e, None)
             while not self._halt.is_set():
                 try:
                     self._q.put(item, timeout=0.2)
@@ -184,7 +187,10 @@ class Prefetcher:
             s += 1
 
     def get(self):
-        return self._q.get()
+        item = self._q.get()
+        if isinstance(item[1], Exception):
+            raise RuntimeError(f"making the batch of step {item[0]} failed") from item[1]
+        return item
 
     def close(self):
         self._halt.set()
@@ -279,11 +285,6 @@ def score(demos, plan) -> dict:
 # The loop.
 
 
-def steps_for(cfg) -> int:
-    """Steps to feed ``cfg.train.strokes_budget`` strokes (expected, from the packing)."""
-    return int(cfg.train.num_steps)
-
-
 def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None) -> dict:
     """Trains (or resumes) the run in ``workdir``; returns the final logs.
 
@@ -349,7 +350,6 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
         while step < end and not interrupted["flag"]:
             s, batch, n_strokes = pf.get()
             assert s == step
-            t0 = time.time()
             params, rest, opt_state, logs = step_fn(
                 params, rest, opt_state, shard_batch(batch, mesh)
             )
@@ -381,7 +381,6 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
                         k: f"{logs[k]:.3f}" for k in ("loss", "acc_move", "acc_start") if k in logs
                     }
                     bar.set_postfix(**shown, strokes_s=f"{rate:.1f}")
-                del t0
             if bar is not None:
                 bar.update(1)
             if cfg.eval.every and step % cfg.eval.every == 0 and step < end:

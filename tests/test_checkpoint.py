@@ -48,3 +48,23 @@ def test_readme_example_plans(tmp_path):
         == 0
     )
     assert png.stat().st_size > 0 and "<polyline" in svg.read_text()
+
+
+def test_eval_writes_results_and_figure(tmp_path):
+    import json
+
+    from jdraw import evaluate
+
+    res = evaluate.evaluate(
+        None,
+        out_dir=tmp_path,
+        name="t",
+        n_random=3,
+        full_test=False,
+        batch=4,
+        progress=False,
+        figure_chars=2,
+    )
+    saved = json.loads((tmp_path / "t.json").read_text())
+    assert saved["test_random"]["n"] == 3 and res["train_random"]["pixel_acc"] == 1.0
+    assert (tmp_path / "t_fig3.png").stat().st_size > 0

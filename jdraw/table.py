@@ -54,7 +54,11 @@ def collect(results="results", runs="runs", bundles: dict | None = None) -> list
     for rid, desc, name, paper in ROWS:
         res_path = results / f"{name}.json"
         res = json.loads(res_path.read_text()) if res_path.exists() else {}
-        prog = _last_progress(runs / name / "metrics.jsonl")
+        # A training log counts only for a row that has been evaluated; the copy under
+        # results/ is the one committed, runs/ the live workdir.
+        logs = [results / f"{name}_training_metrics.jsonl", runs / name / "metrics.jsonl"]
+        log = next((p for p in logs if p.exists()), logs[-1])
+        prog = _last_progress(log) if res else {}
         bundle = pathlib.Path(bundles.get(name, runs / name / "bundle"))
         row = {
             "id": rid,

@@ -131,6 +131,8 @@ def main() -> None:
             f"| {name} | {w}x{h} | {width} | {len(result.tiles)} | {len(result.strokes)} | "
             f"{precision:.3f} | {recall:.3f} | {dt:.1f} s |"
         )
+    if args.sweep:
+        sweep()
 
 
 if __name__ == "__main__":

@@ -65,6 +65,9 @@ class ImagePlan:
       border_joins: strokes joined across a tile border.
       border_breaks: stroke ends next to ink across a tile border that were
         left unjoined (a pen lift at the border).
+      lift_joins: pen lifts inside a tile removed by joining strokes that
+        continue each other (``join_lifts``).
+      fragments: planned pieces dropped because other strokes draw all their pixels.
     """
 
     strokes: list[np.ndarray]
@@ -77,6 +80,8 @@ class ImagePlan:
     completed_pixels: int = 0
     border_joins: int = 0
     border_breaks: int = 0
+    lift_joins: int = 0
+    fragments: int = 0
 
     def pen_down_length(self) -> float:
         """Total length drawn, input pixels."""
@@ -191,77 +196,215 @@ def _crop(img: np.ndarray, ox: int, oy: int) -> np.ndarray:
 # ----------------------------------------------------------------------------- stitching
 
 
+def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
+    """Unit direction in which a pixel path leaves through ``end`` (0 first, 1 last)."""
+    if len(path) < 2:
+        return np.zeros(2)
+    k = min(reach, len(path) - 1)
+    a, b = (path[k], path[0]) if end == 0 else (path[-1 - k], path[-1])
+    d = (b - a).astype(np.float64)
+    return d / max(np.hypot(*d), 1e-9)
+
+
+def _trim_retrace(path: np.ndarray, least: int = 2) -> np.ndarray:
+    """Cuts a path's ends where it doubles back over its own pixels.
+
+    A planner that overshoots and comes back ends its stroke in the middle of
+    ink it already drew. Pixels drawn again at the end (or drawn first at the
+    start and again later) are cut when there are at least ``least`` of them,
+    so a closed loop that ends on its first pixel keeps it.
+    """
+    pix = [(int(x), int(y)) for x, y in path]
+    count: dict[tuple[int, int], int] = {}
+    for q in pix:
+        count[q] = count.get(q, 0) + 1
+    hi = len(pix)
+    left = dict(count)
+    while hi > 1 and left[pix[hi - 1]] > 1:
+        left[pix[hi - 1]] -= 1
+        hi -= 1
+    if len(pix) - hi < least:
+        hi = len(pix)
+    lo = 0
+    left = {q: 0 for q in count}
+    for q in pix[:hi]:
+        left[q] += 1
+    while lo < hi - 1 and left[pix[lo]] > 1:
+        left[pix[lo]] -= 1
+        lo += 1
+    if lo < least:
+        lo = 0
+    return path[lo:hi]
+
+
+def _trim_fragments(paths: list[np.ndarray | None], fragment: int) -> int:
+    """Trims fragments to the pixels no other path draws.
+
+    A fragment is a path that adds at most ``fragment`` pixels to what the
+    other paths draw (a retrace with a pixel or two beyond a stroke's end).
+    It is cut to its new pixels in the order first drawn when they form one
+    8-connected run, else covered pixels are removed from its ends only, so it
+    stays one connected path; a fragment adding nothing is dropped (set to
+    ``None``). Fragments adding
+    least go first. Returns the number dropped.
+    """
+
+    def pixels(j: int) -> set[tuple[int, int]]:
+        return {(int(x), int(y)) for x, y in paths[j]}
+
+    def others(i: int) -> set[tuple[int, int]]:
+        return set().union(*(pixels(j) for j, p in enumerate(paths) if j != i and p is not None))
+
+    new = {i: len(pixels(i) - others(i)) for i, p in enumerate(paths) if p is not None}
+    dropped = 0
+    for i in sorted((i for i in new if new[i] <= fragment), key=lambda i: new[i]):
+        covered = others(i)
+        fresh = [q for q in dict.fromkeys(map(tuple, paths[i].tolist())) if q not in covered]
+        if not fresh:
+            paths[i] = None
+            dropped += 1
+            continue
+        run = np.asarray(fresh, np.int64)
+        if np.all(np.abs(np.diff(run, axis=0)) <= 1):
+            paths[i] = run  # new pixels in the order first drawn, one 8-connected run
+            continue
+        p = paths[i]
+        lo, hi = 0, len(p)
+        while (int(p[lo, 0]), int(p[lo, 1])) in covered:
+            lo += 1
+        while (int(p[hi - 1, 0]), int(p[hi - 1, 1])) in covered:
+            hi -= 1
+        paths[i] = p[lo:hi]
+    return dropped
+
+
 def stitch(
-    pieces: Sequence[tuple[int, np.ndarray]], report: dict | None = None
+    pieces: Sequence[tuple[int, np.ndarray]],
+    report: dict | None = None,
+    *,
+    smooth_cos: float = -0.5,
+    fragment: int = 5,
+    reach: int = 2,
 ) -> list[np.ndarray]:
-    """Joins strokes of different tiles that meet across a tile border.
+    """Joins strokes that meet end to end, so that one line is drawn in one motion.
 
     Args:
       pieces: ``(tile, [n, 2] int (x, y))`` strokes in one shared pixel frame
-        (a region's big canvas), in drawing order. Strokes of one tile are
-        never joined to each other: the planner lifted the pen there.
+        (a region's big canvas), in drawing order; consecutive points may be
+        up to the planner's move apart.
+      report: when given, receives counts (added to what it holds):
+        ``joins`` (links across tile borders), ``breaks`` (ends that had an
+        8-neighbour across a border but stayed unjoined), ``lift_joins`` (pen
+        lifts of one tile removed) and ``fragments`` (pieces dropped because
+        other strokes draw all their pixels).
+      smooth_cos: two strokes of one tile are joined only where they continue
+        each other: the cosine between their outward directions is at most this.
+      reach: ends at most this many pixels apart (Chebyshev) may be joined;
+        2 is the planner's longest move, and the gap is drawn as a straight step.
+      fragment: a piece that adds at most this many pixels to what the others
+        draw is a fragment; so is any piece this short.
 
     Returns:
-      The joined strokes, ordered by their earliest piece; a joined stroke
-      runs in the direction of its earliest piece.
+      The joined strokes as 8-connected pixel paths, ordered by their earliest
+      piece; a joined stroke runs in the direction of its earliest piece.
 
-    An end of one piece is joined to an end of a piece of another tile when
-    the two points are 8-neighbours; where an end has several candidates the
-    straightest continuation wins, and every end is joined at most once.
-    ``report``, when given, receives ``joins`` (links made) and ``breaks``
-    (ends that had a neighbour across a border but stayed unjoined).
+    Two ends are joined when they are at most ``reach`` pixels apart and
+
+    * the pieces lie in different tiles (the tile border cut the stroke), or
+    * they lie in one tile, no other stroke passes there (not a junction), and
+      the two continue each other smoothly, or one of them is a fragment.
+      The planner learned from KanjiVG to lift the pen where a character's
+      stroke ends; a long line cut into tiles gets pen lifts at spots such as
+      the tops of humps, where no character would end a stroke.
+
+    Where a stroke doubles back over itself at an end, that end is cut back
+    to the turn. Fragments (the planner retracing a stroke's end to reach a
+    pixel or two beyond it) are then trimmed to the pixels nothing else draws. Border
+    joins are made first, then the closest, then the straightest
+    continuations; every end is joined at most once.
     """
-    ends: dict[tuple[int, int], list[tuple[int, int]]] = {}
-    for s, (_, pts) in enumerate(pieces):
-        for e in (0, 1):
-            p = pts[0] if e == 0 else pts[-1]
-            ends.setdefault((int(p[0]), int(p[1])), []).append((s, e))
+    paths: list[np.ndarray | None] = [_trim_retrace(raster.polyline_pixels(p)) for _, p in pieces]
+    tile_of = [t for t, _ in pieces]
+    dropped = _trim_fragments(paths, fragment)
+    live = [i for i, p in enumerate(paths) if p is not None and len(p)]
+    size = {i: len({(int(x), int(y)) for x, y in paths[i]}) for i in live}
 
-    def outward(s: int, e: int) -> np.ndarray:
-        pts = pieces[s][1].astype(np.float64)
-        if len(pts) < 2:
-            return np.zeros(2)
-        a, b = (pts[min(3, len(pts) - 1)], pts[0]) if e == 0 else (pts[-min(4, len(pts))], pts[-1])
-        d = b - a
-        return d / max(np.hypot(*d), 1e-9)
+    ends: dict[tuple[int, int], list[tuple[int, int]]] = {}
+    inner: dict[tuple[int, int], set[int]] = {}
+    for s in live:
+        p = paths[s]
+        for e in (0, 1):
+            q = p[0] if e == 0 else p[-1]
+            ends.setdefault((int(q[0]), int(q[1])), []).append((s, e))
+        for x, y in p[2 : len(p) - 2]:
+            inner.setdefault((int(x), int(y)), set()).add(s)
+
+    def junction(q: tuple[int, int], pair: tuple[int, int]) -> bool:
+        x, y = q
+        return any(
+            inner.get((x + dx, y + dy), set()) - set(pair) for dx in (-1, 0, 1) for dy in (-1, 0, 1)
+        )
 
     candidates = []
     for (x, y), here in ends.items():
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
+        for dx in range(-reach, reach + 1):
+            for dy in range(-reach, reach + 1):
                 for s2, e2 in ends.get((x + dx, y + dy), ()):
                     for s1, e1 in here:
-                        if pieces[s1][0] == pieces[s2][0] or (s1, e1) >= (s2, e2):
+                        if s1 == s2 or (s1, e1) >= (s2, e2):
                             continue
+                        o1, o2 = _outward(paths[s1], e1), _outward(paths[s2], e2)
+                        across = tile_of[s1] != tile_of[s2]
+                        if not across:
+                            tiny = min(size[s1], size[s2]) <= fragment
+                            if junction((x, y), (s1, s2)) or junction((x + dx, y + dy), (s1, s2)):
+                                continue
+                            if not tiny and float(o1 @ o2) > smooth_cos:
+                                continue
                         step = np.array([dx, dy], np.float64) / max(np.hypot(dx, dy), 1e-9)
-                        score = float(outward(s1, e1) @ step - outward(s2, e2) @ step)
-                        candidates.append((-score, s1, e1, s2, e2))
+                        score = float(o1 @ step - o2 @ step - o1 @ o2)
+                        gap = max(abs(dx), abs(dy))
+                        candidates.append((not across, gap, -score, s1, e1, s2, e2))
     candidates.sort()
     link: dict[tuple[int, int], tuple[int, int]] = {}
-    for _, s1, e1, s2, e2 in candidates:
-        if (s1, e1) in link or (s2, e2) in link:
+    lift_joins = 0
+    chain = {s: s for s in live}  # union-find: links never close a loop
+
+    def root(s: int) -> int:
+        while chain[s] != s:
+            chain[s] = chain[chain[s]]
+            s = chain[s]
+        return s
+
+    for same, _, _, s1, e1, s2, e2 in candidates:
+        if (s1, e1) in link or (s2, e2) in link or root(s1) == root(s2):
             continue
+        chain[root(s1)] = root(s2)
         link[(s1, e1)] = (s2, e2)
         link[(s2, e2)] = (s1, e1)
+        lift_joins += same
     if report is not None:
-        had = {(s1, e1) for _, s1, e1, _, _ in candidates} | {(s2, e2) for *_, s2, e2 in candidates}
-        report["joins"] = report.get("joins", 0) + len(link) // 2
+        had = {(c[3], c[4]) for c in candidates if not c[0] and c[1] <= 1}
+        had |= {(c[5], c[6]) for c in candidates if not c[0] and c[1] <= 1}
+        report["joins"] = report.get("joins", 0) + len(link) // 2 - lift_joins
         report["breaks"] = report.get("breaks", 0) + len(had - link.keys())
+        report["lift_joins"] = report.get("lift_joins", 0) + lift_joins
+        report["fragments"] = report.get("fragments", 0) + dropped
 
-    used = [False] * len(pieces)
+    used = dict.fromkeys(live, False)
     out = []
-    for seed in range(len(pieces)):
+    for seed in live:
         if used[seed]:
             continue
         used[seed] = True
-        forward = [pieces[seed][1]]
+        forward = [paths[seed]]
         at = (seed, 1)
         while at in link:
             s, e = link[at]
             if used[s]:
                 break
             used[s] = True
-            forward.append(pieces[s][1] if e == 0 else pieces[s][1][::-1])
+            forward.append(paths[s] if e == 0 else paths[s][::-1])
             at = (s, 1 - e)
         backward = []
         at = (seed, 0)
@@ -270,9 +413,9 @@ def stitch(
             if used[s]:
                 break
             used[s] = True
-            backward.append(pieces[s][1] if e == 1 else pieces[s][1][::-1])
+            backward.append(paths[s] if e == 1 else paths[s][::-1])
             at = (s, 1 - e)
-        out.append(np.concatenate(backward[::-1] + forward))
+        out.append(raster.polyline_pixels(np.concatenate(backward[::-1] + forward)))
     return out
 
 
@@ -328,6 +471,7 @@ def plan_image(
     min_gap: float = 4.0,
     batch_size: int = 16,
     simplify_tol: float = 0.5,
+    join_lifts: bool = True,
     progress: bool = True,
 ) -> ImagePlan:
     """Plans how to draw an image of any size; strokes in input pixel coordinates.
@@ -343,6 +487,10 @@ def plan_image(
       batch_size: most tiles per planner call; a call's batch is padded to a
         power of two so a jitted planner compiles for few shapes.
       simplify_tol: input pixels a simplified stroke may stray from the plan.
+      join_lifts: on tiled drawings, also join strokes of one tile that meet
+        end to end and continue each other (see :func:`stitch`); strokes that
+        meet across a tile border are always joined. A drawing fitted to one
+        canvas is drawn exactly as planned.
       progress: show a progress bar (on a terminal) when there are several batches.
 
     Raises:
@@ -356,6 +504,7 @@ def plan_image(
         image = im.load_image(image)
     prep = im.prepare(image, polarity=polarity)
     scale, tiles, regions = layout(prep, min_gap)
+    single = choose_scale(prep, min_gap)[1]
     skel_pts = np.argwhere(prep.skeleton)[:, ::-1].astype(np.float64)
     tree = cKDTree(skel_pts)
     radius = 0.75 / scale + 1.0
@@ -384,7 +533,7 @@ def plan_image(
     report: dict = {}
     for r in range(len(regions)):
         idx = [i for i, t in enumerate(tiles) if t.region == r]
-        if len(idx) == 1:
+        if single:
             t = tiles[idx[0]]
             region_strokes = [t.transform.to_input(np.floor(p + 0.5)) for p in planned[idx[0]]]
         else:
@@ -397,7 +546,8 @@ def plan_image(
                 for p in planned[i]:
                     if len(p):
                         pieces.append((i, (np.floor(p + 0.5) + (dx, dy)).astype(np.int64)))
-            region_strokes = [base.to_input(p) for p in stitch(pieces, report)]
+            knobs = {} if join_lifts else {"smooth_cos": -2.0, "fragment": 0}
+            region_strokes = [base.to_input(p) for p in stitch(pieces, report, **knobs)]
         for p in region_strokes:
             if len(p) == 0:
                 continue
@@ -414,6 +564,8 @@ def plan_image(
         completed,
         report.get("joins", 0),
         report.get("breaks", 0),
+        report.get("lift_joins", 0),
+        report.get("fragments", 0),
     )
 
 

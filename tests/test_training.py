@@ -59,6 +59,7 @@ def test_resume_equals_uninterrupted(straight_run, tmp_path):
 
 def test_export_bundle_loads_and_plans(straight_run, tmp_path):
     import jdraw
+
     out = jdraw.export(straight_run, tmp_path / "b")
     meta = json.loads((out / "bundle.json").read_text())
     assert meta["format_version"] == bundle.FORMAT_VERSION and meta["model"]["hidden"] == 16

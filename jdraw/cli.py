@@ -22,9 +22,11 @@ examples:
   jdraw draw hello.jpg --svg hello.svg --png hello_strokes.png
   jdraw draw sketch.png --gcode sketch.gcode --preset servo --width-mm 150 --feed 2000
   jdraw draw board.jpg --polarity light --json board.json
+  jdraw draw word.png --trajectory word_arm.json --sheet-mm 120
 
-exit status: 0 on success, 2 for bad arguments or an unusable image
-(missing, unreadable, unsupported format, blank).
+exit status: 0 on success, 1 when --trajectory finds the sheet out of the
+arm's reach, 2 for bad arguments or an unusable image (missing, unreadable,
+unsupported format, blank).
 """
 
 
@@ -39,7 +41,7 @@ def _parser() -> argparse.ArgumentParser:
     sub.required = True
     d = sub.add_parser(
         "draw",
-        help="plan the strokes for an image and write SVG, G-code, JSON or PNG",
+        help="plan the strokes for an image; write SVG, G-code, JSON, PNG or an arm trajectory",
         description=_DESCRIPTION,
         epilog=_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -63,6 +65,13 @@ def _parser() -> argparse.ArgumentParser:
         "--png",
         metavar="OUT",
         help="PNG of the strokes coloured by order (blue first, red last), starts dotted",
+    )
+    out.add_argument(
+        "--trajectory",
+        metavar="OUT",
+        help="JSON joint trajectory (shaped like ROS trajectory_msgs/JointTrajectory) of "
+        "the simulated 7-DoF arm drawing the strokes on a --sheet-mm sheet; the arm is "
+        "rolled out in MuJoCo MJX to check reach and ink (adds ~30 s of compiling)",
     )
 
     im = d.add_argument_group("image")
@@ -106,6 +115,16 @@ def _parser() -> argparse.ArgumentParser:
         type=float,
         metavar="MM",
         help="drawing height in mm; with --width-mm the drawing fits inside both",
+    )
+
+    rb = d.add_argument_group("robot (--trajectory)")
+    rb.add_argument(
+        "--sheet-mm",
+        type=float,
+        default=100.0,
+        metavar="MM",
+        help="side of the square sheet in front of the arm; the drawing spans 90%% of it "
+        "(default 100, the arm's comfortable reach; 1 mm per canvas pixel)",
     )
 
     gc = d.add_argument_group("G-code")
@@ -161,7 +180,7 @@ def _draw(args) -> int:
     from jdraw import image as jimage
     from jdraw import tiling
 
-    outputs = [args.svg, args.gcode, args.json, args.png]
+    outputs = [args.svg, args.gcode, args.json, args.png, args.trajectory]
     for o in outputs:
         if o and os.path.dirname(o) and not os.path.isdir(os.path.dirname(o)):
             return _fail(f"cannot write {o!r}: no such directory")
@@ -169,6 +188,8 @@ def _draw(args) -> int:
         return _fail("--max-steps must be positive")
     if args.min_gap <= 0:
         return _fail("--min-gap must be positive")
+    if not 0 < args.sheet_mm <= 1000:
+        return _fail("--sheet-mm must be in (0, 1000]")
     t0 = time.perf_counter()
     try:
         img = jimage.load_image(args.image)
@@ -219,6 +240,24 @@ def _draw(args) -> int:
         return _fail(f"bad G-code template or size: {e}")
     except OSError as e:
         return _fail(f"cannot write output: {e}")
+    arm_msg, status = "", 0
+    if args.trajectory:
+        from jdraw import robot
+
+        options = robot.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
+        report, traj = robot.image_trajectory(strokes, shape, options)
+        try:
+            formats.write_json(traj, args.trajectory)
+        except OSError as e:
+            return _fail(f"cannot write output: {e}")
+        ok = bool(report.reachable[0])
+        arm_msg = (
+            f"arm: {'reachable' if ok else 'NOT reachable'}, ink IoU vs plan "
+            f"{float(report.iou[0]):.3f}, drawing time {float(report.drawing_time_s[0]):.1f} s, "
+            f"{len(traj['points'])} trajectory points"
+        )
+        if not ok:
+            status = 1
     h, w = shape
     msg = (
         f"{args.image}: {w}x{h} px, {len(strokes)} strokes, {len(result.tiles)} tile(s), "
@@ -227,9 +266,20 @@ def _draw(args) -> int:
     if result.truncated:
         msg += f"; {result.truncated} tile(s) hit --max-steps ({result.completed_pixels} px traced)"
     print(msg)
+    if arm_msg:
+        print(arm_msg)
+    if status:
+        print(
+            "jdraw: the arm cannot reach every waypoint of this sheet (see jdraw.robot.verify's "
+            "`offending`); the trajectory was written but must not be run",
+            file=sys.stderr,
+        )
     if not any(outputs):
-        print("no output requested: add --svg, --gcode, --json or --png", file=sys.stderr)
-    return 0
+        print(
+            "no output requested: add --svg, --gcode, --json, --png or --trajectory",
+            file=sys.stderr,
+        )
+    return status
 
 
 def main(argv: list[str] | None = None) -> int:

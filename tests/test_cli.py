@@ -94,3 +94,60 @@ def test_module_entry_point_runs():
         [sys.executable, "-m", "jdraw.cli", "--help"], capture_output=True, text=True, timeout=120
     )
     assert out.returncode == 0 and "draw" in out.stdout
+
+
+def test_trajectory_for_the_arm(tmp_path, monkeypatch, capsys):
+    """``--trajectory``: the simulated arm draws the strokes; ROS-shaped joint path out."""
+    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    path = tmp_path / "corner.png"  # an L
+    corner = np.array([[20.0, 20], [20, 100], [80, 100]])
+    cv2.imwrite(str(path), im.photo_like([corner], (120, 100)))
+    out = tmp_path / "arm.json"
+    argv = ["draw", str(path), "--no-progress", "--trajectory", str(out)]
+    assert cli.main(argv) == 0
+    summary = capsys.readouterr().out
+    assert "arm: reachable" in summary
+    iou = float(summary.split("IoU vs plan ")[1].split(",")[0])
+    assert iou >= 0.9  # the nib's ink on the sheet matches the plan
+    traj = json.loads(out.read_text())
+    assert len(traj["joint_names"]) == 7 and len(traj["points"]) > 10
+    stamps = [p["time_from_start"] for p in traj["points"]]
+    t = [st["sec"] + 1e-9 * st["nanosec"] for st in stamps]
+    assert np.all(np.diff(t) > 0)
+    assert all(len(p["positions"]) == len(p["velocities"]) == 7 for p in traj["points"])
+
+
+def test_trajectory_out_of_reach_is_an_error(word_photo, tmp_path, monkeypatch, capsys):
+    from types import SimpleNamespace
+
+    from jdraw import robot
+
+    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    seen = {}
+
+    def unreachable(strokes, shape, options):
+        seen["sheet"] = options.sheet_size_mm
+        report = SimpleNamespace(
+            reachable=np.array([False]), iou=np.array([0.2]), drawing_time_s=np.array([9.0])
+        )
+        return report, formats.joint_trajectory(["j1"], [0.0, 0.1], [[0.0], [0.1]])
+
+    monkeypatch.setattr(robot, "image_trajectory", unreachable)
+    path, _, _ = word_photo
+    argv = ["draw", str(path), "--no-progress", "--trajectory", str(tmp_path / "a.json")]
+    assert cli.main([*argv, "--sheet-mm", "400"]) == 1
+    assert seen["sheet"] == (400.0, 400.0)
+    assert "NOT reachable" in capsys.readouterr().out
+    assert cli.main([*argv, "--sheet-mm", "0"]) == 2
+
+
+def test_sheet_fit_keeps_aspect_and_centres():
+    from jdraw import robot
+
+    shape = (201, 401)  # H, W
+    strokes = [np.array([[0.0, 0.0], [400.0, 200.0]]), np.array([[200.0, 100.0]])]
+    a, b = robot.to_sheet(strokes, shape, fill=0.9)
+    np.testing.assert_allclose(a, [[4.95, 27.225], [94.05, 71.775]], atol=1e-9)
+    np.testing.assert_allclose(b, [[49.5, 49.5]], atol=1e-9)
+    with pytest.raises(ValueError):
+        robot.to_sheet(strokes, shape, fill=0.0)

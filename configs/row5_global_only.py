@@ -5,7 +5,7 @@ Command:
   python eval.py --checkpoint runs/row5_global_only --name row5_global_only
 
 Budget: every training sample here is a whole-canvas encoder pass, 16 a step
-for the same 3,400 steps as row 1, which matches row 1's compute per step
+for the same 3,600 steps as row 1, which matches row 1's compute per step
 (512 window passes + 8 canvas passes) within about 10% on this CPU; the
 paper's 100,000-stroke budget would be ~450,000 canvas passes here (about
 6 hours of this 2-core CPU). strokes_seen counts samples (one raw action of

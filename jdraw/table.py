@@ -118,8 +118,11 @@ def markdown(rows: list[dict]) -> str:
             f"| {_f(r['pixel_acc_test_full'])} / {_f(r['stroke_acc_test_full'])} "
             f"| {seen} | {wall} |"
         )
-    lines += ["", "Rows without numbers were not measured yet; their commands:", ""]
-    lines += [f"- row {r['id']}: `{r['command']}`" for r in rows if r["stroke_acc_test"] is None]
+    missing = [r for r in rows if r["stroke_acc_test"] is None]
+    lines += ["", "Commands (train, then evaluate):", ""]
+    lines += [f"- row {r['id']}: `{r['command']}`" for r in rows]
+    if missing:
+        lines += ["", "Not measured yet: " + ", ".join(f"row {r['id']}" for r in missing) + "."]
     return "\n".join(lines) + "\n"
 
 

@@ -245,36 +245,40 @@ def _trim_fragments(paths: list[np.ndarray | None], fragment: int) -> int:
     It is cut to its new pixels in the order first drawn when they form one
     8-connected run, else covered pixels are removed from its ends only, so it
     stays one connected path; a fragment adding nothing is dropped (set to
-    ``None``). Fragments adding
-    least go first. Returns the number dropped.
+    ``None``). Fragments adding least go first. Returns the number dropped.
     """
+    own = [set(map(tuple, p.tolist())) if p is not None else set() for p in paths]
+    count: dict[tuple, int] = {}  # how many paths draw each pixel
+    for px in own:
+        for q in px:
+            count[q] = count.get(q, 0) + 1
 
-    def pixels(j: int) -> set[tuple[int, int]]:
-        return {(int(x), int(y)) for x, y in paths[j]}
+    def fresh(i: int) -> list[tuple]:
+        """Pixels only path ``i`` draws, in the order it first draws them."""
+        return [q for q in dict.fromkeys(map(tuple, paths[i].tolist())) if count[q] == 1]
 
-    def others(i: int) -> set[tuple[int, int]]:
-        return set().union(*(pixels(j) for j, p in enumerate(paths) if j != i and p is not None))
-
-    new = {i: len(pixels(i) - others(i)) for i, p in enumerate(paths) if p is not None}
+    adds = {i: len(fresh(i)) for i in range(len(paths)) if paths[i] is not None}
+    small = {i: n for i, n in adds.items() if n <= fragment}
     dropped = 0
-    for i in sorted((i for i in new if new[i] <= fragment), key=lambda i: new[i]):
-        covered = others(i)
-        fresh = [q for q in dict.fromkeys(map(tuple, paths[i].tolist())) if q not in covered]
-        if not fresh:
+    for i in sorted(small, key=small.get):
+        new = fresh(i)  # others may have been trimmed since
+        p = paths[i]
+        if not new:
             paths[i] = None
             dropped += 1
-            continue
-        run = np.asarray(fresh, np.int64)
-        if np.all(np.abs(np.diff(run, axis=0)) <= 1):
-            paths[i] = run  # new pixels in the order first drawn, one 8-connected run
-            continue
-        p = paths[i]
-        lo, hi = 0, len(p)
-        while (int(p[lo, 0]), int(p[lo, 1])) in covered:
-            lo += 1
-        while (int(p[hi - 1, 0]), int(p[hi - 1, 1])) in covered:
-            hi -= 1
-        paths[i] = p[lo:hi]
+        elif np.all(np.abs(np.diff(np.asarray(new), axis=0)) <= 1):
+            paths[i] = np.asarray(new, np.int64)  # one 8-connected run of new pixels
+        else:
+            lo, hi = 0, len(p)
+            while count[tuple(p[lo].tolist())] > 1:
+                lo += 1
+            while count[tuple(p[hi - 1].tolist())] > 1:
+                hi -= 1
+            paths[i] = p[lo:hi]
+        kept = set(map(tuple, paths[i].tolist())) if paths[i] is not None else set()
+        for q in own[i] - kept:
+            count[q] -= 1
+        own[i] = kept
     return dropped
 
 
@@ -319,8 +323,8 @@ def stitch(
 
     Where a stroke doubles back over itself at an end, that end is cut back
     to the turn. Fragments (the planner retracing a stroke's end to reach a
-    pixel or two beyond it) are then trimmed to the pixels nothing else draws. Border
-    joins are made first, then the closest, then the straightest
+    pixel or two beyond it) are then trimmed to the pixels nothing else draws.
+    Border joins are made first, then the closest, then the straightest
     continuations; every end is joined at most once.
     """
     paths: list[np.ndarray | None] = [_trim_retrace(raster.polyline_pixels(p)) for _, p in pieces]

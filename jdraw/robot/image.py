@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from jdraw import formats, raster, types
+from jdraw import image as im
 from jdraw.robot.options import RobotOptions
 from jdraw.robot.verifier import Report, verify
 
@@ -26,11 +27,8 @@ def to_sheet(strokes, shape: tuple[int, int], fill: float = 0.9) -> list[np.ndar
         raise ValueError(f"image shape must be positive, got {shape}")
     if not 0 < fill <= 1:
         raise ValueError(f"fill must be in (0, 1], got {fill}")
-    scale = fill * (raster.CANVAS - 1) / max(h - 1, w - 1, 1)
-    centre_in = np.array([(w - 1) / 2, (h - 1) / 2])
-    centre = (raster.CANVAS - 1) / 2
-    pts = [np.asarray(s, np.float64).reshape(-1, 2) for s in strokes]
-    return [(p - centre_in) * scale + centre for p in pts]
+    tf = im.fit_transform((0.0, 0.0, w - 1.0, h - 1.0), extent=fill * (raster.CANVAS - 1))
+    return [tf.to_canvas(np.asarray(s, np.float64).reshape(-1, 2)) for s in strokes]
 
 
 def image_trajectory(

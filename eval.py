@@ -2,9 +2,11 @@
 
   python eval.py --checkpoint jdraw/checkpoints/default --name paper
 
-Writes results/NAME.json (pixel/stroke accuracy, stroke order and direction
-agreement on 100 random train and test characters and on the whole test
-split) and results/NAME_fig3.png (target | trace | strokes by order).
+Writes results/NAME.json (pixel/stroke accuracy, stroke order over matched
+and over all pairs, exact order, direction, drawn/true strokes, on 100 random
+train and test characters, the whole test split, and the test split drawn by
+OpenCV and with a 3-px pen; each as traced, x + y sorted and, where the
+checkpoint has a ranker, ranked) and results/NAME_fig3.png.
 """
 
 from absl import app, flags, logging
@@ -20,6 +22,13 @@ _N = flags.DEFINE_integer("n", 100, "Random characters from each of train and te
 _FULL = flags.DEFINE_bool("full_test", True, "Also score the whole test split (1,000 characters).")
 _BATCH = flags.DEFINE_integer("batch", 32, "Planning batch size.")
 _SEED = flags.DEFINE_integer("seed", 0, "Which random characters.")
+_VARIANTS = flags.DEFINE_list(
+    "variants", ["cv2", "thick3"], "Other drawings of the test split (cv2, thick3, aa)."
+)
+_VCHARS = flags.DEFINE_integer("variant_chars", None, "Test characters for the variants (all).")
+_RANKER = flags.DEFINE_string(
+    "ranker", None, "Folder with a stroke ranker to use instead of the checkpoint's own."
+)
 
 
 def main(argv):
@@ -33,14 +42,19 @@ def main(argv):
         seed=_SEED.value,
         full_test=_FULL.value,
         batch=_BATCH.value,
+        variants=tuple(_VARIANTS.value),
+        variant_chars=_VCHARS.value,
+        ranker_from=_RANKER.value,
     )
-    for k in ("train_random", "test_random", "test_full"):
-        if k in res:
-            r = res[k]
+    for k, r in res.items():
+        if not isinstance(r, dict):
+            continue
+        for o, m in r["by_order"].items():
             print(
-                f"{k:13s} pixel {r['pixel_acc']:.4f}  stroke {r['stroke_acc']:.4f}  "
-                f"order {r['order_agreement']:.4f}  "
-                f"direction {r['direction_agreement']:.4f}  (n={r['n']})"
+                f"{k:13s} {o:6s} pixel {m['pixel_acc']:.4f}  stroke {m['stroke_acc']:.4f}  "
+                f"order {m['order_agreement']:.4f} (all pairs {m['order_all_pairs']:.4f}, "
+                f"exact {m['exact_order']:.3f})  direction {m['direction_agreement']:.4f}  "
+                f"strokes/true {m['stroke_ratio']:.3f}  (n={m['n']})"
             )
 
 

@@ -21,6 +21,11 @@ def main(argv):
     logging.set_verbosity(logging.WARNING)  # Orbax logs every save at INFO
     cfg = _CONFIG.value
     workdir = _WORKDIR.value or f"runs/{cfg.get('name', 'run')}"
+    if cfg.get("stage") == "ranker":
+        from jdraw import ranker_train
+
+        print(ranker_train.train(cfg, workdir))
+        return
     result = training.train(cfg, workdir)
     print({k: v for k, v in result.items() if k != "val"})
     if "val" in result:

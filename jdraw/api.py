@@ -123,25 +123,66 @@ def _planner(graphdef, limits: planner.Limits, local_encoding: str, kind: str = 
     return jax.jit(many)
 
 
+def load_ranker(checkpoint=None):
+    """The stroke ranker stored beside a bundle's model, or ``None``."""
+
+    if checkpoint is None:
+        path = _default_bundle()
+    elif isinstance(checkpoint, nnx.Module):
+        return None
+    else:
+        path = pathlib.Path(checkpoint)
+    return _load_ranker(str(path.resolve())) if path is not None else None
+
+
+@functools.lru_cache(maxsize=8)
+def _load_ranker(path: str):
+    from jdraw import ranker
+
+    return ranker.load(path)
+
+
 def plan(
-    images, *, checkpoint=None, max_steps: int | None = None, local_encoding: str = "window"
+    images,
+    *,
+    checkpoint=None,
+    max_steps: int | None = None,
+    local_encoding: str = "window",
+    order: str = "auto",
+    canonicalise: bool = True,
 ) -> Plan:
     """Plans how to draw each image.
 
     Args:
-      images: ``[B, 100, 100]`` or ``[100, 100]``; nonzero is ink (1-pixel
-        lines, like a skeleton). bool, uint8 or float.
+      images: ``[B, 100, 100]`` or ``[100, 100]``; nonzero is ink: lines of
+        any rasteriser, 1-4 pixels wide, with 1-pixel breaks allowed. bool,
+        uint8 or float.
       checkpoint: a bundle folder (see :func:`jdraw.export`), a training
         workdir, a ``DrawModel``, or ``None`` for the bundled model.
       max_steps: action rows per image (default 1024); a plan cut by it is
         marked ``truncated``.
       local_encoding: ``"window"`` (default) or ``"full"``; same actions,
         ``"full"`` is the slow reference.
+      order: ``"auto"`` (the checkpoint's stroke ranker if it has one, else
+        as traced), ``"model"`` (as the planner traced them), ``"ranker"``
+        (the learned order and directions, :mod:`jdraw.ranker`) or ``"xy"``
+        (sorted by the start's x + y, a reference rule).
+      canonicalise: first map the ink to canonical 1-pixel lines
+        (:func:`jdraw.canonical.canonicalise`: thin thick pens, drop
+        staircase corners, fill 1-pixel breaks). The plan then inks pixels
+        within 1 pixel of the input's ink; lines already canonical, like
+        KanjiVG as jdraw draws it, are left as they are.
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
     """
+    from jdraw import canonical, ranker
+
+    if order not in ("auto", *ranker.ORDERS):
+        raise ValueError(f"order must be 'auto' or one of {ranker.ORDERS}, got {order!r}")
     targets = as_targets(images)
+    if canonicalise:
+        targets = np.stack([canonical.canonicalise(t) for t in targets])
     limits = planner.Limits(max_steps=int(max_steps or planner.Limits.max_steps))
     if limits.max_steps < 1:
         raise ValueError(f"max_steps must be positive, got {max_steps}")
@@ -153,9 +194,13 @@ def plan(
     actions = np.asarray(out.actions)
     lengths = np.asarray(out.length)
     strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]
-    return Plan(
+    result = Plan(
         strokes=strokes, actions=actions, lengths=lengths, truncated=np.asarray(out.truncated)
     )
+    rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
+    if order == "auto":
+        order = "ranker" if rk is not None else "model"
+    return ranker.reorder(result, order, rk)
 
 
 @functools.lru_cache(maxsize=4)

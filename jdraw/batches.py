@@ -105,18 +105,33 @@ def global_state_arrays(size: int, **labels) -> dict:
 
 
 def global_batch(
-    ks: KanjiSet, pool: np.ndarray, rng: np.random.Generator, *, size: int, strength: float
+    ks: KanjiSet,
+    pool: np.ndarray,
+    rng: np.random.Generator,
+    *,
+    size: int,
+    strength: float,
+    per_char: int = 1,
 ) -> dict:
     """States before a random stroke and that stroke's start.
+
+    ``per_char`` states (before distinct strokes) come from each sampled
+    character: making the character is most of the host's cost.
 
     Returns numpy arrays: ``target``, ``visited``, ``last`` bool [G, 100, 100],
     ``pen`` int32 [G, 2], ``has_pen`` bool [G], ``start`` int32 [G] (flat
     index ``y * 100 + x``).
     """
     out = global_state_arrays(size, start=np.int32)
-    for g in range(size):
+    picks: list[tuple[D.Demo, int]] = []
+    while len(picks) < size:
         d = D.sample(ks, int(rng.choice(pool)), rng, strength)
-        i = int(rng.integers(len(d.strokes)))
+        if per_char == 1:  # the paper config's exact data order
+            picks.append((d, int(rng.integers(len(d.strokes)))))
+        else:
+            for i in rng.permutation(len(d.strokes))[:per_char]:
+                picks.append((d, int(i)))
+    for g, (d, i) in enumerate(picks[:size]):
         out["target"][g] = d.target
         out["visited"][g] = _union(d.strokes[:i])
         if i > 0:

@@ -1,4 +1,13 @@
-"""Evaluation as the paper's §IV-A: pixel and stroke accuracy on KanjiVG splits."""
+"""Evaluation as the paper's §IV-A, plus stroke order and inputs drawn other ways.
+
+Every split is planned once; the plan is then scored as traced and after each
+reordering (:func:`jdraw.ranker.reorder`): the learned ranker where the
+checkpoint has one, and the x + y sort of the plan's own strokes as a
+reference rule. Besides KanjiVG as our rasteriser draws it, the test split is
+drawn by OpenCV (``cv2``: 1-pixel polylines through the curves, with the
+staircase joints of a common rasteriser) and with a 3-pixel pen (``thick3``),
+and scored with a 1-pixel tolerance (:func:`jdraw.metrics.score`).
+"""
 
 from __future__ import annotations
 
@@ -6,29 +15,64 @@ import json
 import pathlib
 import time
 
+import cv2
 import numpy as np
 
-from jdraw import api, demo, figures, kanji, training
+from jdraw import api, demo, figures, kanji, metrics, ranker
+
+VARIANTS = ("cv2", "thick3")
 
 
-def plan_chars(ks, idx, checkpoint, batch: int = 32, progress: bool = True, max_steps=None):
-    """Plans characters ``idx`` (no augmentation) in batches; returns ``(demos, plans)``."""
+def rasterise(ks: kanji.KanjiSet, i: int, style: str) -> np.ndarray:
+    """``bool [100, 100]`` character ``i`` drawn by OpenCV in ``style``.
+
+    Styles: ``"cv2"`` 1-pixel 8-connected polylines through points 1.5 px
+    apart along the curves; ``"thick3"`` the same with a 3-pixel pen;
+    ``"aa"`` anti-aliased 1-pixel lines thresholded at half intensity.
+    """
+    img = np.zeros((100, 100), np.uint8)
+    thickness, line = {"cv2": (1, cv2.LINE_8), "thick3": (3, cv2.LINE_8), "aa": (1, cv2.LINE_AA)}[
+        style
+    ]
+    for c in ks.strokes(i):
+        pts = np.rint(kanji.sample_cubics(c, step=1.5)).astype(np.int32)
+        cv2.polylines(img, [pts.reshape(-1, 1, 2)], False, 255, thickness, line)
+    return img >= 128
+
+
+def plan_chars(
+    ks,
+    idx,
+    checkpoint,
+    batch: int = 32,
+    progress: bool = True,
+    max_steps=None,
+    style: str | None = None,
+):
+    """Plans characters ``idx`` (no augmentation) as traced (``order="model"``).
+
+    Returns ``(demos, inputs bool [N, 100, 100], plan)``; ``inputs`` are the
+    images planned: the demonstrations' targets, or ``style``'s drawing.
+    """
     from jdraw.types import Plan
 
     demos = [demo.sample(ks, int(i)) for i in idx]
+    if style is None:
+        inputs = np.stack([d.target for d in demos])
+    else:
+        inputs = np.stack([rasterise(ks, int(i), style) for i in idx])
     it = range(0, len(demos), batch)
     if progress:
         from tqdm import tqdm
 
-        it = tqdm(it, desc="planning", unit="batch")
+        it = tqdm(it, desc=f"planning {style or 'kanjivg'}", unit="batch")
     parts = []
     for s in it:
-        chunk = demos[s : s + batch]
-        targets = np.stack([d.target for d in chunk])
-        if len(chunk) < batch:  # pad to the compiled batch size
-            targets = np.concatenate([targets, np.zeros((batch - len(chunk), 100, 100), bool)])
-        p = api.plan(targets, checkpoint=checkpoint, max_steps=max_steps)
+        chunk = inputs[s : s + batch]
         n = len(chunk)
+        if n < batch:  # pad to the compiled batch size
+            chunk = np.concatenate([chunk, np.zeros((batch - n, 100, 100), bool)])
+        p = api.plan(chunk, checkpoint=checkpoint, max_steps=max_steps, order="model")
         parts.append(Plan(p.strokes[:n], p.actions[:n], p.lengths[:n], p.truncated[:n]))
     T = max(p.actions.shape[1] for p in parts)
     plan = Plan(
@@ -39,7 +83,7 @@ def plan_chars(ks, idx, checkpoint, batch: int = 32, progress: bool = True, max_
         lengths=np.concatenate([p.lengths for p in parts]),
         truncated=np.concatenate([p.truncated for p in parts]),
     )
-    return demos, plan
+    return demos, inputs, plan
 
 
 def evaluate(
@@ -50,9 +94,12 @@ def evaluate(
     n_random: int = 100,
     seed: int = 0,
     full_test: bool = True,
+    variants=VARIANTS,
+    variant_chars: int | None = None,
     batch: int = 32,
     progress: bool = True,
     figure_chars: int = 6,
+    ranker_from=None,
 ) -> dict:
     """Scores a checkpoint; writes ``{out_dir}/{name}.json`` and ``{name}_fig3.png``.
 
@@ -61,24 +108,53 @@ def evaluate(
       n_random: characters drawn at random from each of train and test, as
         the paper's 100.
       full_test: also score the whole test split.
+      variants: other drawings of the test split (see :func:`rasterise`).
+      variant_chars: the first this many test characters for the variants
+        (default: all).
+      ranker_from: a folder holding a stroke ranker to use in place of the
+        checkpoint's own (to score another planner's strokes with it).
+
+    Each split's entry holds the metrics of the order ``jdraw.plan`` uses by
+    default for this checkpoint (the ranker's if it has one) and, under
+    ``by_order``, those of every order.
     """
     ks = kanji.load(progress=progress)
     rng = np.random.default_rng(seed)
-    res: dict = {"checkpoint": str(checkpoint) if checkpoint is not None else "bundled default"}
+    rk = api.load_ranker(ranker_from if ranker_from is not None else checkpoint)
+    orders = ["model", "xy"] + (["ranker"] if rk is not None else [])
+    default = "ranker" if rk is not None else "model"
+    res: dict = {
+        "checkpoint": str(checkpoint) if checkpoint is not None else "bundled default",
+        "default_order": default,
+    }
     t0 = time.time()
+    test = kanji.split_indices(ks, "test")
     sets = {
-        "train_random": rng.choice(kanji.split_indices(ks, "train"), n_random, replace=False),
-        "test_random": rng.choice(kanji.split_indices(ks, "test"), n_random, replace=False),
+        "train_random": (
+            rng.choice(kanji.split_indices(ks, "train"), n_random, replace=False),
+            None,
+        ),
+        "test_random": (rng.choice(test, n_random, replace=False), None),
     }
     if full_test:
-        sets["test_full"] = kanji.split_indices(ks, "test")
+        sets["test_full"] = (test, None)
+    for v in variants:
+        sets[f"test_{v}"] = (test[:variant_chars] if variant_chars else test, v)
     fig_rows = []
-    for key, idx in sets.items():
+    for key, (idx, style) in sets.items():
         t = time.time()
-        demos, plan = plan_chars(ks, idx, checkpoint, batch=batch, progress=progress)
-        res[key] = {**training.score(demos, plan), "seconds": time.time() - t}
+        demos, inputs, plan = plan_chars(
+            ks, idx, checkpoint, batch=batch, progress=progress, style=style
+        )
+        plan_s = time.time() - t
+        by = {}
+        for o in orders:
+            p = ranker.reorder(plan, o, rk)
+            by[o] = metrics.score(demos, p, inputs, tol=1 if style else 0)
+        res[key] = {**by[default], "seconds": plan_s, "by_order": by}
         if key == "test_random":
-            for d, s in list(zip(demos, plan.strokes))[:figure_chars]:
+            p = ranker.reorder(plan, default, rk)
+            for d, s in list(zip(demos, p.strokes))[:figure_chars]:
                 fig_rows.append(figures.fig3_row(d.target, s))
     res["seconds"] = time.time() - t0
     out = pathlib.Path(out_dir)

@@ -72,3 +72,162 @@ def order_and_direction(target_strokes, target_points, drawn_strokes, drawn_poin
         dirs.append(np.linalg.norm(dp[0] - tp[0]) <= np.linalg.norm(dp[0] - tp[-1]))
     direction = float(np.mean(dirs)) if dirs else float("nan")
     return float(order), direction, float(ok.mean())
+
+
+def order_all_pairs(target_strokes, drawn_strokes, iou=0.5) -> tuple[float, bool]:
+    """Order agreement over all pairs of reference strokes, and exact order.
+
+    Each target stroke is matched as in :func:`order_and_direction`; a pair
+    agrees only if both strokes are matched and drawn in the reference's
+    relative order, so an unmatched stroke counts against every pair it is in.
+
+    Returns:
+      ``(fraction of agreeing pairs, exact)``: ``exact`` is true when the plan
+      has as many strokes as the reference, all matched to distinct drawn
+      strokes, in the reference's order. With one reference stroke the
+      fraction is 1.0 if it is matched.
+    """
+    t = np.asarray(target_strokes, bool)
+    d = np.asarray(drawn_strokes, bool)
+    if len(t) == 0 or len(d) == 0:
+        return float(len(t) == len(d)), len(t) == len(d)
+    m = _iou_matrix(t, d)
+    best = m.argmax(1)
+    ok = m.max(1) >= iou
+    n = len(t)
+    if n == 1:
+        return float(ok[0]), bool(ok[0] and len(d) == 1)
+    agree = sum(
+        bool(ok[i] and ok[j] and best[i] < best[j]) for i in range(n) for j in range(i + 1, n)
+    )
+    exact = bool(len(d) == n and ok.all() and np.all(np.diff(best) > 0))
+    return agree / (n * (n - 1) / 2), exact
+
+
+def _dilate(img: np.ndarray, r: int) -> np.ndarray:
+    import cv2
+
+    k = np.ones((2 * r + 1, 2 * r + 1), np.uint8)
+    return cv2.dilate(np.asarray(img, np.uint8), k).astype(bool)
+
+
+def tolerant_pixel_accuracy(target, drawn, tol: int = 1) -> float:
+    """Pixel accuracy with a tolerance of ``tol`` pixels (Chebyshev).
+
+    A drawn pixel counts as right when ink lies within ``tol`` of it, and an
+    ink pixel as covered when a drawn pixel lies within ``tol``:
+    ``(right + covered) / (drawn + ink)``. For inputs drawn by another
+    rasteriser or with a thick pen, whose centreline the planner draws.
+    """
+    t = np.asarray(target, bool)
+    p = np.asarray(drawn, bool)
+    n = np.count_nonzero(t) + np.count_nonzero(p)
+    if n == 0:
+        return 1.0
+    right = np.count_nonzero(p & _dilate(t, tol))
+    covered = np.count_nonzero(t & _dilate(p, tol))
+    return (right + covered) / n
+
+
+def tolerant_stroke_iou(a: np.ndarray, b: np.ndarray, tol: int = 1) -> np.ndarray:
+    """``[A, B]`` IoU of stroke images with a ``tol``-pixel tolerance.
+
+    The intersection is the mean of each side's pixels lying within ``tol``
+    of the other side, so two renderings of one line score about 1.
+    """
+    a = np.asarray(a, bool)
+    b = np.asarray(b, bool)
+    ad = np.stack([_dilate(x, tol) for x in a]).reshape(len(a), -1).astype(np.float64)
+    bd = np.stack([_dilate(x, tol) for x in b]).reshape(len(b), -1).astype(np.float64)
+    af = a.reshape(len(a), -1).astype(np.float64)
+    bf = b.reshape(len(b), -1).astype(np.float64)
+    inter = (af @ bd.T + ad @ bf.T) / 2  # each side's pixels near the other, averaged
+    union = af.sum(1)[:, None] + bf.sum(1)[None] - inter
+    return np.where(union > 0, inter / np.maximum(union, 1e-9), 1.0)
+
+
+def score(demos, plan, inputs=None, tol: int = 0) -> dict:
+    """Per-character metrics of a plan against demonstrations, averaged.
+
+    Args:
+      demos: the reference demonstrations (strokes in KanjiVG's order).
+      plan: a :class:`jdraw.Plan` of the same characters.
+      inputs: ``bool [B, H, W]`` images the plan was made from (default: the
+        demonstrations' own targets). Pixel accuracy is against these.
+      tol: 0 for the paper's exact metrics; ``tol`` pixels of tolerance
+        (:func:`tolerant_pixel_accuracy`, :func:`tolerant_stroke_iou`) for
+        inputs drawn by another rasteriser or pen.
+
+    Returns:
+      pixel_acc, stroke_acc, order_agreement (matched pairs), order_all_pairs,
+      exact_order, direction_agreement, stroke_ratio (drawn / true strokes),
+      truncated, n.
+    """
+    from jdraw import raster
+    from jdraw.types import render
+
+    drawn = render(plan)
+    keys = ("pixel", "stroke", "order", "order_all", "exact", "direction", "ratio")
+    acc: dict[str, list] = {k: [] for k in keys}
+    for b, (d, img, strokes) in enumerate(zip(demos, drawn, plan.strokes)):
+        ink = d.target if inputs is None else np.asarray(inputs[b], bool)
+        per = (
+            np.stack([raster.render_strokes([s]) for s in strokes])
+            if strokes
+            else np.zeros((0, *img.shape), bool)
+        )
+        tgt = d.stroke_images()
+        if tol:
+            acc["pixel"].append(tolerant_pixel_accuracy(ink, img, tol))
+            m = tolerant_stroke_iou(per, tgt, tol) if len(per) else np.zeros((0, len(tgt)))
+            acc["stroke"].append(float(m.max(1).mean()) if len(per) else float(len(tgt) == 0))
+            # Match on tolerant IoU: replace drawn images by the reference stroke they fit.
+            o, di, oa, ex = _order_tolerant(m, d.strokes, strokes)
+        else:
+            acc["pixel"].append(pixel_accuracy(ink, img))
+            acc["stroke"].append(stroke_accuracy(tgt, per))
+            o, di, _ = order_and_direction(tgt, d.strokes, per, strokes)
+            oa, ex = order_all_pairs(tgt, per)
+        acc["order"].append(o)
+        acc["direction"].append(di)
+        acc["order_all"].append(oa)
+        acc["exact"].append(ex)
+        acc["ratio"].append(len(strokes) / max(len(d.strokes), 1))
+    mean = lambda v: (
+        float(np.nanmean(v)) if np.isfinite(np.asarray(v, float)).any() else float("nan")
+    )
+    return {
+        "pixel_acc": mean(acc["pixel"]),
+        "stroke_acc": mean(acc["stroke"]),
+        "order_agreement": mean(acc["order"]),
+        "order_all_pairs": mean(acc["order_all"]),
+        "exact_order": mean(acc["exact"]),
+        "direction_agreement": mean(acc["direction"]),
+        "stroke_ratio": mean(acc["ratio"]),
+        "truncated": float(np.mean(plan.truncated)),
+        "n": len(demos),
+    }
+
+
+def _order_tolerant(m: np.ndarray, target_points, drawn_points, iou: float = 0.5):
+    """Order/direction metrics from a ``[D, S]`` (drawn x target) tolerant IoU matrix."""
+    n = m.shape[1]
+    if m.shape[0] == 0:
+        return float("nan"), float("nan"), float(n == 0), n == 0
+    best = m.argmax(0)
+    ok = m.max(0) >= iou
+    idx = np.flatnonzero(ok)
+    pairs = [(i, j) for a, i in enumerate(idx) for j in idx[a + 1 :]]
+    order = float(np.mean([best[i] < best[j] for i, j in pairs])) if pairs else float("nan")
+    dirs = []
+    for i in idx:
+        tp, dp = np.asarray(target_points[i], float), np.asarray(drawn_points[best[i]], float)
+        dirs.append(np.linalg.norm(dp[0] - tp[0]) <= np.linalg.norm(dp[0] - tp[-1]))
+    direction = float(np.mean(dirs)) if dirs else float("nan")
+    if n == 1:
+        return order, direction, float(ok[0]), bool(ok[0] and m.shape[0] == 1)
+    agree = sum(
+        bool(ok[i] and ok[j] and best[i] < best[j]) for i in range(n) for j in range(i + 1, n)
+    )
+    exact = bool(m.shape[0] == n and ok.all() and np.all(np.diff(best) > 0))
+    return order, direction, agree / (n * (n - 1) / 2), exact

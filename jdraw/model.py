@@ -29,6 +29,7 @@ import jax
 import jax.numpy as jnp
 from flax import nnx
 
+from jdraw.start_net import StartNet
 from jdraw.state import GLOBAL_CHANNELS, LOCAL_CHANNELS
 
 PATCH = 5
@@ -195,6 +196,8 @@ class DrawModel(nnx.Module):
         core: str = "lstm",
         extraction: str = "late",
         kind: str = "two_scale",
+        global_net: str = "paper",
+        start_widths: Sequence[int] = (8, 16, 32, 64),
         rngs: nnx.Rngs,
     ):
         if core not in ("lstm", "fc"):
@@ -203,6 +206,10 @@ class DrawModel(nnx.Module):
             raise ValueError(f"extraction must be 'late' or 'initial', got {extraction!r}")
         if kind not in ("two_scale", "global_only"):
             raise ValueError(f"kind must be 'two_scale' or 'global_only', got {kind!r}")
+        if global_net not in ("paper", "unet") or (global_net == "unet" and kind != "two_scale"):
+            raise ValueError(
+                f"global_net must be 'paper', or 'unet' with kind 'two_scale', got {global_net!r}"
+            )
         self.extraction = extraction
         self.kind = kind
         self.trunk = Trunk(blocks, rngs)
@@ -213,9 +220,13 @@ class DrawModel(nnx.Module):
         self.core = cls(PATCH * PATCH * width, hidden, rngs)
         self.touch_head = nnx.Linear(hidden, 1, rngs=rngs)
         self.move_head = nnx.Linear(hidden, 25, rngs=rngs)
-        self.global_first = ConvParams(GLOBAL_CHANNELS, self.trunk.blocks[0][0], 3, rngs)
-        self.global_norms = Norms(self.trunk.blocks, rngs)
-        self.global_head = ConvParams(width, 1, 1, rngs)
+        self.global_net = global_net
+        if global_net == "unet":  # ours: whole-canvas view, ~1/8 of the cost
+            self.start_net = StartNet(GLOBAL_CHANNELS, start_widths, rngs=rngs)
+        else:
+            self.global_first = ConvParams(GLOBAL_CHANNELS, self.trunk.blocks[0][0], 3, rngs)
+            self.global_norms = Norms(self.trunk.blocks, rngs)
+            self.global_head = ConvParams(width, 1, 1, rngs)
         # Ablation (c) decides pen up/down from pooled global features.
         self.global_touch = nnx.Linear(2 * width, 1, rngs=rngs) if kind == "global_only" else None
 
@@ -243,17 +254,21 @@ class DrawModel(nnx.Module):
 
     def global_logits(self, states):
         """``[N, 100, 100, 4]`` -> next-start logits ``[N, 100, 100]``."""
+        if self.global_net == "unet":
+            return self.start_net(states)
         f = encode(states, self.global_first, self.trunk, self.global_norms)
         return _conv(f, self.global_head.w[...], self.global_head.b[...], "VALID")[..., 0]
 
 
 def build(cfg, seed: int = 0) -> DrawModel:
-    """A model from a config's ``model`` section (hidden, core, extraction, kind)."""
+    """A model from a config's ``model`` section (hidden, core, extraction, kind, global_net)."""
     return DrawModel(
         hidden=int(cfg.hidden),
         blocks=tuple(tuple(b) for b in cfg.get("blocks", BLOCKS)),
         core=str(cfg.get("core", "lstm")),
         extraction=str(cfg.get("extraction", "late")),
         kind=str(cfg.get("kind", "two_scale")),
+        global_net=str(cfg.get("global_net", "paper")),
+        start_widths=tuple(cfg.get("start_widths", (8, 16, 32, 64))),
         rngs=nnx.Rngs(seed),
     )

@@ -97,14 +97,19 @@ def choose_scale(prep: im.Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
     Centrelines of strokes that do not touch are at least a stroke width
     apart; at ``min_gap / width`` canvas pixels per input pixel they stay
     ``min_gap`` pixels apart, so they do not merge on the canvas. A drawing
-    that still fits the character extent at that scale or larger is fitted
-    to one canvas like a character; otherwise it is tiled at that scale (never
+    whose ink fits the character extent at ``FIT_SLACK`` of that scale or
+    larger is fitted to one canvas like a character (lines then stay at least
+    ``FIT_SLACK * min_gap`` apart, as in KanjiVG's densest characters), so the
+    model orders all its strokes; otherwise it is tiled at that scale (never
     enlarged, since thin lines are already separable).
     """
     s_min = min(1.0, min_gap / prep.width)
     x0, y0, x1, y1 = im.ink_bbox(prep.polylines)
     s_fit = im.CHAR_EXTENT / max(x1 - x0, y1 - y0, 1.0)
-    return (s_fit, True) if s_fit >= s_min else (s_min, False)
+    return (s_fit, True) if s_fit >= FIT_SLACK * s_min else (s_min, False)
+
+
+FIT_SLACK = 0.7
 
 
 def _reading_order(boxes: Sequence[tuple[float, float, float, float]]) -> list[int]:

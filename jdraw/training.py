@@ -94,6 +94,27 @@ def global_loss(model: M.DrawModel, g: dict):
 # The step.
 
 
+def init_from_bundle(model: M.DrawModel, bundle_dir) -> int:
+    """Copies every array of a bundle that ``model`` has (same path and shape).
+
+    Used to train a new global model beside a trained local model
+    (``configs/ours.py``). Returns the number of arrays copied.
+    """
+    from jdraw import bundle as B
+
+    with np.load(pathlib.Path(bundle_dir) / "params.npz") as z:
+        arrays = {k: z[k] for k in z.files}
+    flat = nnx.to_flat_state(nnx.state(model))
+    n = 0
+    for p, v in flat:
+        a = arrays.get(B._key(p))
+        if a is not None and a.shape == v.shape:
+            v.set_value(a) if hasattr(v, "set_value") else setattr(v, "value", a)
+            n += 1
+    nnx.update(model, nnx.from_flat_state(flat))
+    return n
+
+
 def make_step(graphdef, tx, global_weight: float):
     def loss_fn(model):
         b = batch_ref[0]
@@ -102,8 +123,10 @@ def make_step(graphdef, tx, global_weight: float):
 
             loss, logs = global_only.loss(model, b["global_only"])
             return loss, {"loss": loss, **logs}
-        ll, lm = local_loss(model, b["local"])
         gl, gm = global_loss(model, b["global"])
+        if "local" not in b:  # only the global model trains (configs/ours.py)
+            return gl, {"loss": gl, "global_loss": gl, **gm}
+        ll, lm = local_loss(model, b["local"])
         loss = ll + global_weight * gl
         return loss, {"loss": loss, "local_loss": ll, "global_loss": gl, **lm, **gm}
 
@@ -146,6 +169,16 @@ def make_batch(ks, pool, cfg, step: int) -> dict:
 
         g = global_only.batch(ks, pool, rng, size=t.global_batch, strength=cfg.data.augment)
         return {"global_only": g}, t.global_batch  # each sample is an action of one stroke
+    gb = lambda: batches.global_batch(
+        ks,
+        pool,
+        rng,
+        size=t.global_batch,
+        strength=cfg.data.augment,
+        per_char=int(t.get("global_per_char", 1)),
+    )
+    if not t.get("train_local", True):
+        return {"global": gb()}, 0
     lb = batches.local_batch(
         ks,
         pool,
@@ -156,9 +189,8 @@ def make_batch(ks, pool, cfg, step: int) -> dict:
         per_char=t.strokes_per_char,
         strength=cfg.data.augment,
     )
-    gb = batches.global_batch(ks, pool, rng, size=t.global_batch, strength=cfg.data.augment)
     n = lb.pop("n_strokes")
-    return {"local": lb, "global": gb}, n
+    return {"local": lb, "global": gb()}, n
 
 
 class Prefetcher:
@@ -251,34 +283,8 @@ def validate(model_state, graphdef, ks, idx, max_steps: int = 1024) -> dict:
 
 
 def score(demos, plan) -> dict:
-    """Per-character metrics of a plan against demonstrations, averaged."""
-    from jdraw import raster
-    from jdraw.types import render
-
-    drawn = render(plan)
-    pa, sa, order, direction = [], [], [], []
-    for d, img, strokes in zip(demos, drawn, plan.strokes):
-        pa.append(metrics.pixel_accuracy(d.target, img))
-        per = (
-            np.stack([raster.render_strokes([s]) for s in strokes])
-            if strokes
-            else np.zeros((0, 100, 100), bool)
-        )
-        tgt = d.stroke_images()
-        sa.append(metrics.stroke_accuracy(tgt, per))
-        o, di, _ = metrics.order_and_direction(tgt, d.strokes, per, strokes)
-        order.append(o)
-        direction.append(di)
-    return {
-        "pixel_acc": float(np.mean(pa)),
-        "stroke_acc": float(np.mean(sa)),
-        "order_agreement": float(np.nanmean(order)) if np.isfinite(order).any() else float("nan"),
-        "direction_agreement": float(np.nanmean(direction))
-        if np.isfinite(direction).any()
-        else float("nan"),
-        "truncated": float(np.mean(plan.truncated)),
-        "n": len(demos),
-    }
+    """Per-character metrics of a plan against demonstrations (:func:`jdraw.metrics.score`)."""
+    return metrics.score(demos, plan)
 
 
 # ----------------------------------------------------------------------------
@@ -302,6 +308,8 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
     val_idx = kanji.split_indices(ks, "val")[: cfg.eval.val_chars]
 
     model = M.build(cfg.model, seed=int(cfg.seed))
+    if cfg.train.get("init_from"):
+        init_from_bundle(model, cfg.train.init_from)
     model.train()
     graphdef, params, rest = nnx.split(model, nnx.Param, ...)
     tx = optax.adam(cfg.train.learning_rate)

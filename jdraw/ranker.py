@@ -1,0 +1,462 @@
+"""A learned ordering stage: which of the traced strokes comes first, and which way.
+
+The two-scale planner traces strokes well, but a start model that sees a
+neighbourhood cannot order them like a person. This stage looks at the strokes
+the planner drew as tokens of geometry (start, end, centre, box, heading,
+length, and how two strokes touch or cross) and learns from KanjiVG's order,
+on the tracer's own strokes, two small functions:
+
+* ``pair(a, b)``: the log-odds that stroke ``a`` is written before ``b``
+  (antisymmetric by construction, RankNet loss);
+* ``heading(s)``: the log-odds that ``s`` is drawn in the right direction
+  (``h(s) - h(reversed s)``, so flipping a stroke flips the sign).
+
+Strokes are flipped where ``heading < 0`` and ranked by their summed pairwise
+probabilities, then adjacent swaps that raise the pairwise log-likelihood are
+made until none does. Flipping walks a stroke's pixel path backwards, so the
+plan inks exactly the same pixels.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import pathlib
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import optax
+from flax import nnx
+
+from jdraw import raster
+
+STROKE_FEATURES = 20
+PAIR_FEATURES = 3 * STROKE_FEATURES + 9
+
+
+def _pixels(points) -> np.ndarray:
+    """``int64 [m, 2]`` 8-connected pixel path of a stroke's points."""
+    p = np.rint(np.asarray(points, float)).astype(np.int64).reshape(-1, 2)
+    d = np.diff(p, axis=0)
+    if len(d) == 0 or np.abs(d).max() > 2:
+        return raster.polyline_pixels(p)
+    # Local moves (|d| <= 2) skip at most one pixel: the line rule's midpoint.
+    mid = p[:-1] + np.sign(d) * (np.abs(d) // 2)
+    path = np.stack([mid, p[1:]], 1).reshape(-1, 2)
+    path = np.concatenate([p[:1], path])
+    keep = np.ones(len(path), bool)
+    keep[1:] = np.any(path[1:] != path[:-1], axis=1)
+    return path[keep]
+
+
+def stroke_masks(strokes, shape=(raster.CANVAS, raster.CANVAS)) -> np.ndarray:
+    """``bool [S, H, W]`` one image per stroke (as :func:`jdraw.raster.render_strokes`)."""
+    out = np.zeros((len(strokes), *shape), bool)
+    for k, s in enumerate(strokes):
+        p = _pixels(s)
+        out[k, p[:, 1], p[:, 0]] = True
+    return out
+
+
+def stroke_features(path: np.ndarray, box: np.ndarray) -> np.ndarray:
+    """``float32 [STROKE_FEATURES]`` of one stroke.
+
+    Args:
+      path: ``[m, 2]`` (x, y) pixel path in drawing order.
+      box: ``[4]`` the character's ink box (x0, y0, x1, y1).
+    """
+    p = np.asarray(path, np.float64)
+    s, e = p[0], p[-1]
+    c = p.mean(0)
+    lo, hi = p.min(0), p.max(0)
+    n = len(p)
+    k = min(3, n - 1)
+    head = p[k] - p[0]
+    tail = p[-1] - p[-1 - k]
+    unit = lambda v: v / max(np.linalg.norm(v), 1e-6)
+    size = np.maximum(box[2:] - box[:2], 1.0)
+    rel = lambda q: (q - box[:2]) / size
+    f = np.concatenate(
+        [
+            s / 100,
+            e / 100,
+            c / 100,
+            lo / 100,
+            hi / 100,
+            unit(e - s),
+            unit(head),
+            unit(tail),
+            [n / 100],
+            rel(s),
+            [np.linalg.norm(e - s) / max(n, 1)],
+        ]
+    )
+    return f.astype(np.float32)
+
+
+@dataclasses.dataclass
+class Tokens:
+    """A character's strokes as tokens.
+
+    Attributes:
+      paths: ``S`` pixel paths ``[m_i, 2]`` in their drawn direction.
+      feats: ``float32 [S, STROKE_FEATURES]``.
+      rfeats: ``float32 [S, STROKE_FEATURES]``, the same strokes reversed.
+      rel: ``float32 [S, S, 9]`` relations of stroke pairs.
+    """
+
+    paths: list[np.ndarray]
+    feats: np.ndarray
+    rfeats: np.ndarray
+    rel: np.ndarray
+
+
+def _relations(paths: list[np.ndarray]) -> np.ndarray:
+    """``float32 [S, S, 9]``: how stroke ``i`` relates to stroke ``j``."""
+    n = len(paths)
+    allp = np.concatenate(paths)
+    h, w = int(allp[:, 1].max()) + 2, int(allp[:, 0].max()) + 2
+    masks = np.zeros((n, h, w), bool)
+    for k, p in enumerate(paths):
+        masks[k, p[:, 1], p[:, 0]] = True
+    near = masks.copy()  # 3x3 dilation
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            near[:, max(dy, 0) : h + min(dy, 0), max(dx, 0) : w + min(dx, 0)] |= masks[
+                :, max(-dy, 0) : h + min(-dy, 0), max(-dx, 0) : w + min(-dx, 0)
+            ]
+    inner = masks.copy()
+    for k, p in enumerate(paths):
+        inner[k, p[0, 1], p[0, 0]] = inner[k, p[-1, 1], p[-1, 0]] = False
+    m = masks.reshape(n, -1).astype(np.float32)
+    touch = (m @ near.reshape(n, -1).T.astype(np.float32)) > 0
+    cross = (inner.reshape(n, -1).astype(np.float32) @ m.T) > 0
+    s = np.array([p[0] for p in paths])
+    e = np.array([p[-1] for p in paths])
+    s_on = near[:, s[:, 1], s[:, 0]].T  # [i, j]: i's start near j
+    e_on = near[:, e[:, 1], e[:, 0]].T
+    lo = np.array([p.min(0) for p in paths], float)
+    hi = np.array([p.max(0) for p in paths], float)
+    ov = np.maximum(0, np.minimum(hi[:, None], hi[None]) - np.maximum(lo[:, None], lo[None]) + 1)
+    span = np.maximum(1, np.minimum((hi - lo)[:, None], (hi - lo)[None]) + 1)
+    holds = np.all(lo[:, None] <= lo[None], -1) & np.all(hi[:, None] >= hi[None], -1)
+    rel = np.stack(
+        [
+            touch,
+            s_on,
+            e_on,
+            s_on.T,
+            e_on.T,
+            cross,
+            ov[..., 0] / span[..., 0],
+            ov[..., 1] / span[..., 1],
+            holds,
+        ],
+        -1,
+    ).astype(np.float32)
+    rel[np.arange(n), np.arange(n)] = 0
+    return rel
+
+
+def tokens(strokes) -> Tokens:
+    """Tokens of strokes given as lists of ``[n, 2]`` points (a plan's or a demo's)."""
+    paths = [_pixels(s) for s in strokes]
+    if not paths:
+        z = np.zeros((0, STROKE_FEATURES), np.float32)
+        return Tokens([], z, z, np.zeros((0, 0, 9), np.float32))
+    allp = np.concatenate(paths)
+    box = np.concatenate([allp.min(0), allp.max(0)]).astype(np.float64)
+    feats = np.stack([stroke_features(p, box) for p in paths])
+    rfeats = np.stack([stroke_features(p[::-1], box) for p in paths])
+    return Tokens(paths, feats, rfeats, _relations(paths))
+
+
+def pair_inputs(feats: np.ndarray, rel: np.ndarray, i, j) -> np.ndarray:
+    """``float32 [K, PAIR_FEATURES]`` for index arrays ``i``, ``j`` of stroke pairs."""
+    a, b = feats[i], feats[j]
+    return np.concatenate([a, b, a - b, rel[i, j]], -1).astype(np.float32)
+
+
+class _MLP(nnx.Module):
+    def __init__(self, din: int, hidden: int, rngs: nnx.Rngs):
+        self.l1 = nnx.Linear(din, hidden, rngs=rngs)
+        self.l2 = nnx.Linear(hidden, hidden, rngs=rngs)
+        self.out = nnx.Linear(hidden, 1, rngs=rngs)
+
+    def __call__(self, x):
+        return self.out(jax.nn.relu(self.l2(jax.nn.relu(self.l1(x)))))[..., 0]
+
+
+class Ranker(nnx.Module):
+    """Pairwise order and per-stroke heading scores (see the module docstring)."""
+
+    def __init__(self, hidden: int = 64, *, rngs: nnx.Rngs):
+        self.hidden = hidden
+        self.pair_net = _MLP(PAIR_FEATURES, hidden, rngs)
+        self.heading_net = _MLP(STROKE_FEATURES, hidden, rngs)
+
+    def pair(self, x_ab, x_ba):
+        """Log-odds that a precedes b, from both orders' inputs ``[..., PAIR_FEATURES]``."""
+        return self.pair_net(x_ab) - self.pair_net(x_ba)
+
+    def heading(self, f, rf):
+        """Log-odds that strokes ``f [..., F]`` (reversed: ``rf``) run the right way."""
+        return self.heading_net(f) - self.heading_net(rf)
+
+
+# ----------------------------------------------------------------------------
+# Inference.
+
+
+@jax.jit
+def _scores(graphdef, st, x_ab, x_ba, f, rf):
+    m = nnx.merge(graphdef, st)
+    return m.pair(x_ab, x_ba), m.heading(f, rf)
+
+
+def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
+    """The order and the flips the ranker chooses for one character's strokes.
+
+    Returns:
+      ``(order, flip)``: ``order`` lists stroke indices in drawing order;
+      ``flip[i]`` says stroke ``i`` is to be drawn backwards.
+    """
+    n = len(strokes)
+    if n == 0:
+        return [], []
+    tk = tokens(strokes)
+    g, st = nnx.split(ranker)
+    # Bucket the pair count so a new stroke count seldom recompiles.
+    size = 1 << max(1, int(np.ceil(np.log2(max(n, 2)))))
+    _, h = _scores(
+        g,
+        st,
+        np.zeros((1, PAIR_FEATURES), np.float32),
+        np.zeros((1, PAIR_FEATURES), np.float32),
+        _pad(tk.feats, size),
+        _pad(tk.rfeats, size),
+    )
+    flip = [bool(v < 0) for v in np.asarray(h)[:n]]
+    paths = [p[::-1] if fl else p for p, fl in zip(tk.paths, flip)]
+    tk = tokens(paths)
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    i, j = i.ravel(), j.ravel()
+    x_ab = pair_inputs(tk.feats, tk.rel, i, j)
+    x_ba = pair_inputs(tk.feats, tk.rel, j, i)
+    logit, _ = _scores(
+        g,
+        st,
+        _pad(x_ab, size * size),
+        _pad(x_ba, size * size),
+        np.zeros((1, STROKE_FEATURES), np.float32),
+        np.zeros((1, STROKE_FEATURES), np.float32),
+    )
+    logit = np.asarray(logit)[: n * n].reshape(n, n)
+    np.fill_diagonal(logit, 0.0)
+    prob = 1.0 / (1.0 + np.exp(-logit))
+    np.fill_diagonal(prob, 0.0)
+    order = list(np.argsort(-prob.sum(1), kind="stable"))
+    # Adjacent swaps while the pairwise log-likelihood rises.
+    for _ in range(n):
+        changed = False
+        for k in range(n - 1):
+            a, b = order[k], order[k + 1]
+            if logit[b, a] > logit[a, b]:
+                order[k], order[k + 1] = b, a
+                changed = True
+        if not changed:
+            break
+    return [int(k) for k in order], flip
+
+
+def _pad(x: np.ndarray, rows: int) -> np.ndarray:
+    out = np.zeros((rows, *x.shape[1:]), np.float32)
+    out[: len(x)] = x[:rows]
+    return out
+
+
+def apply_order(strokes, order, flip) -> list[np.ndarray]:
+    """Strokes reordered, flipped ones as their pixel path walked backwards."""
+    out = []
+    for k in order:
+        s = np.asarray(strokes[k], np.float64)
+        out.append(_pixels(s)[::-1].astype(np.float64) if flip[k] else s)
+    return out
+
+
+def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:
+    """``int32 [T, 3]`` (dx, dy, touch) drawing ``strokes`` in order, as the planner writes them."""
+    rows = []
+    pos = np.asarray(start, np.int64)
+    for s in strokes:
+        p = np.rint(np.asarray(s, float)).astype(np.int64)
+        rows.append([*(p[0] - pos), 0])
+        if len(p) == 1:
+            rows.append([0, 0, 1])
+        rows.extend([*d, 1] for d in np.diff(p, axis=0))
+        pos = p[-1]
+    return np.asarray(rows, np.int32).reshape(-1, 3)
+
+
+# ----------------------------------------------------------------------------
+# Training data and training.
+
+
+def examples(drawn_strokes, ref_images, ref_points, iou: float = 0.5):
+    """Labels the tracer's strokes of one character with the reference's order.
+
+    Each drawn stroke takes the index of the reference stroke it overlaps
+    most (IoU at least ``iou``; others are left out). Pairs of strokes that
+    match different reference strokes become order examples; each matched
+    stroke becomes a heading example (its start nearer the reference start).
+
+    Returns:
+      ``(pairs [P, PAIR_FEATURES] a-before-b inputs, their swapped inputs,
+      heading feats [H, F], reversed feats [H, F], heading labels [H])``.
+    """
+    if not drawn_strokes:
+        return None
+    tk = tokens(drawn_strokes)
+    imgs = np.zeros((len(tk.paths), *ref_images.shape[1:]), bool)
+    for k, p in enumerate(tk.paths):
+        imgs[k, p[:, 1], p[:, 0]] = True
+    d = imgs.reshape(len(imgs), -1).astype(np.float64)
+    t = ref_images.reshape(len(ref_images), -1).astype(np.float64)
+    inter = d @ t.T
+    union = d.sum(1)[:, None] + t.sum(1)[None] - inter
+    m = np.where(union > 0, inter / np.maximum(union, 1), 0.0)
+    best, ok = m.argmax(1), m.max(1) >= iou
+    idx = np.flatnonzero(ok)
+    first, second = [], []
+    for a in idx:
+        for b in idx:
+            if best[a] < best[b]:
+                first.append(a)
+                second.append(b)
+    first, second = np.asarray(first, int), np.asarray(second, int)
+    x_ab = pair_inputs(tk.feats, tk.rel, first, second)
+    x_ba = pair_inputs(tk.feats, tk.rel, second, first)
+    lab = []
+    for a in idx:
+        rp = np.asarray(ref_points[best[a]], float)
+        s = tk.paths[a][0]
+        lab.append(np.linalg.norm(s - rp[0]) <= np.linalg.norm(s - rp[-1]))
+    return x_ab, x_ba, tk.feats[idx], tk.rfeats[idx], np.asarray(lab, np.float32)
+
+
+def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3, seed: int = 0):
+    """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs."""
+    x_ab, x_ba, f, rf, lab = data
+    model = Ranker(rngs=nnx.Rngs(seed))
+    tx = optax.adam(lr)
+    graphdef, params = nnx.split(model, nnx.Param)
+    opt = tx.init(params)
+
+    def loss_fn(params, xa, xb, hf, hr, hl):
+        m = nnx.merge(graphdef, params)
+        po = m.pair(xa, xb)  # label: a before b, always 1 here (pairs come ordered)
+        lo = jnp.mean(optax.sigmoid_binary_cross_entropy(po, jnp.ones_like(po)))
+        ho = m.heading(hf, hr)
+        lh = jnp.mean(optax.sigmoid_binary_cross_entropy(ho, hl))
+        return lo + lh, (jnp.mean(po > 0), jnp.mean((ho > 0) == (hl > 0.5)))
+
+    @jax.jit
+    def step(params, opt, xa, xb, hf, hr, hl):
+        (loss, accs), g = jax.value_and_grad(loss_fn, has_aux=True)(params, xa, xb, hf, hr, hl)
+        upd, opt = tx.update(g, opt, params)
+        return optax.apply_updates(params, upd), opt, loss, accs
+
+    rng = np.random.default_rng(seed)
+    logs = []
+    for s in range(steps):
+        pi = rng.integers(len(x_ab), size=batch)
+        hi = rng.integers(len(f), size=batch)
+        # Show each pair in both orders: the net learns an antisymmetric score.
+        params, opt, loss, accs = step(params, opt, x_ab[pi], x_ba[pi], f[hi], rf[hi], lab[hi])
+        if s % 500 == 0 or s == steps - 1:
+            logs.append(
+                {
+                    "step": s,
+                    "loss": float(loss),
+                    "pair_acc": float(accs[0]),
+                    "heading_acc": float(accs[1]),
+                }
+            )
+    nnx.update(model, params)
+    return model, logs
+
+
+def save(ranker: Ranker, out_dir, provenance: dict | None = None) -> pathlib.Path:
+    """Writes ``ranker.npz`` and ``ranker.json`` into a bundle folder."""
+    from jdraw import bundle
+
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    np.savez(out / "ranker.npz", **bundle.state_arrays(ranker))
+    meta = {"hidden": ranker.hidden, "provenance": provenance or {}}
+    (out / "ranker.json").write_text(json.dumps(meta, indent=2) + "\n")
+    return out
+
+
+def load(bundle_dir) -> Ranker | None:
+    """The ranker stored in a bundle folder, or ``None`` if it has none."""
+    from jdraw import bundle
+
+    d = pathlib.Path(bundle_dir)
+    if not (d / "ranker.json").exists():
+        return None
+    meta = json.loads((d / "ranker.json").read_text())
+    model = Ranker(int(meta.get("hidden", 64)), rngs=nnx.Rngs(0))
+    try:
+        with np.load(d / "ranker.npz") as z:
+            arrays = {k: z[k] for k in z.files}
+    except (OSError, ValueError) as e:
+        raise bundle.BundleError(f"{d / 'ranker.npz'}: unreadable ({e})") from e
+    flat = nnx.to_flat_state(nnx.state(model))
+    for p, v in flat:
+        key = bundle._key(p)
+        if key not in arrays or arrays[key].shape != v.shape:
+            raise bundle.BundleError(f"{d / 'ranker.npz'}: {key} missing or of the wrong shape")
+        v.set_value(arrays[key]) if hasattr(v, "set_value") else setattr(v, "value", arrays[key])
+    nnx.update(model, nnx.from_flat_state(flat))
+    return model
+
+
+# ----------------------------------------------------------------------------
+# Whole plans.
+
+ORDERS = ("model", "ranker", "xy")
+
+
+def reorder(plan, method: str, ranker: Ranker | None = None):
+    """A :class:`jdraw.Plan` with each image's strokes reordered (and maybe flipped).
+
+    Args:
+      method: ``"model"`` (as traced: returned unchanged), ``"ranker"`` (the
+        learned order and directions; needs ``ranker``) or ``"xy"`` (the
+        reference rule: sort by the start's x + y).
+    """
+    from jdraw.types import Plan
+
+    if method not in ORDERS:
+        raise ValueError(f"order must be one of {ORDERS}, got {method!r}")
+    if method == "model":
+        return plan
+    if method == "ranker" and ranker is None:
+        raise ValueError("order='ranker' needs a ranker; this checkpoint has none")
+    strokes = []
+    for s in plan.strokes:
+        if method == "xy":
+            order = sorted(range(len(s)), key=lambda k: (s[k][0][0] + s[k][0][1], k))
+            strokes.append([s[k] for k in order])
+        else:
+            order, flip = order_strokes(ranker, s)
+            strokes.append(apply_order(s, order, flip))
+    rows = [actions_from_strokes(s) for s in strokes]
+    T = max([plan.actions.shape[1], *(len(r) for r in rows)])
+    actions = np.zeros((len(rows), T, 3), np.int32)
+    for b, r in enumerate(rows):
+        actions[b, : len(r)] = r
+    lengths = np.asarray([len(r) for r in rows], np.int32)
+    return Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=plan.truncated)

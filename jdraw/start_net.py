@@ -1,0 +1,94 @@
+"""A cheap global model that sees the whole canvas: a small U-Net for the next start.
+
+The paper's global model (3x3 convolutions, 64 channels at full resolution, a
+1x1 head) gives each pixel's "start here" logit a 19x19 view, so it can learn
+little beyond "start near the pen". This network goes down to a 13x13 grid and
+back up with skips, adds coordinate channels and a pooled summary of the whole
+canvas at the coarsest level, so every logit depends on every pixel of the
+state, while the logits stay per pixel (starts stay exact).
+
+Channels are few at full resolution, which is where the cost is: about 1/8 of
+the paper's global encoder in multiply-adds (``bench/global_cost.py``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import jax
+import jax.numpy as jnp
+from flax import nnx
+
+WIDTHS = (8, 16, 32, 64)  # channels at 100, 50, 25 and 13 pixels
+
+
+def _conv(x, p, stride: int = 1):
+    y = jax.lax.conv_general_dilated(
+        x, p.w[...], (stride, stride), "SAME", dimension_numbers=("NHWC", "HWIO", "NHWC")
+    )
+    return y + p.b[...]
+
+
+class _Conv(nnx.Module):
+    def __init__(self, cin: int, cout: int, k: int, rngs: nnx.Rngs):
+        self.w = nnx.Param(nnx.initializers.he_normal()(rngs.params(), (k, k, cin, cout)))
+        self.b = nnx.Param(jnp.zeros((cout,)))
+
+
+def coordinates(h: int, w: int) -> jax.Array:
+    """``float32 [h, w, 2]``: x and y in [-1, 1]."""
+    ys, xs = jnp.meshgrid(jnp.linspace(-1, 1, h), jnp.linspace(-1, 1, w), indexing="ij")
+    return jnp.stack([xs, ys], -1)
+
+
+def _up(x, shape):
+    """Doubles ``[N, h, w, C]`` by repeating pixels, cropped to ``shape`` (h', w')."""
+    x = jnp.repeat(jnp.repeat(x, 2, axis=1), 2, axis=2)
+    return x[:, : shape[0], : shape[1]]
+
+
+class StartNet(nnx.Module):
+    """``[N, 100, 100, C]`` global state -> ``[N, 100, 100]`` start logits.
+
+    Args:
+      in_channels: state channels (4 for :func:`jdraw.state.global_state`).
+      widths: channels at each level; each level halves the side (100, 50, 25, 13).
+    """
+
+    def __init__(self, in_channels: int, widths: Sequence[int] = WIDTHS, *, rngs: nnx.Rngs):
+        widths = tuple(int(c) for c in widths)
+        self.widths = widths
+        c0 = widths[0]
+        self.stem = _Conv(in_channels + 2, c0, 3, rngs)
+        self.down = nnx.List(
+            [_Conv(a, b, 3, rngs) for a, b in zip(widths[:-1], widths[1:])]
+        )  # stride 2
+        self.mid = nnx.List([_Conv(c, c, 3, rngs) for c in widths[1:]])
+        top = widths[-1]
+        self.context = _Conv(2 * top, top, 1, rngs)  # pooled summary mixed back in
+        # After concatenating the skip; 1x1 at full resolution, where pixels are many.
+        self.up = nnx.List(
+            [
+                _Conv(b + a, a, 1 if i == 0 else 3, rngs)
+                for i, (a, b) in enumerate(zip(widths[:-1], widths[1:]))
+            ]
+        )
+        self.head = _Conv(c0, 1, 1, rngs)
+
+    def __call__(self, x: jax.Array) -> jax.Array:
+        n, h, w, _ = x.shape
+        xy = jnp.broadcast_to(coordinates(h, w), (n, h, w, 2))
+        f = jax.nn.relu(_conv(jnp.concatenate([x, xy], -1), self.stem))
+        skips = []
+        for down, mid in zip(self.down, self.mid):
+            skips.append(f)
+            f = jax.nn.relu(_conv(f, down, stride=2))
+            f = jax.nn.relu(_conv(f, mid))
+        pooled = jnp.concatenate([f.mean((1, 2)), f.max((1, 2))], -1)[:, None, None]
+        f = f + jax.nn.relu(
+            _conv(jnp.broadcast_to(pooled, (*f.shape[:3], pooled.shape[-1])), self.context)
+        )
+        for i in reversed(range(len(self.up))):
+            s = skips[i]
+            f = jax.nn.relu(_conv(jnp.concatenate([_up(f, s.shape[1:3]), s], -1), self.up[i]))
+        return _conv(f, self.head)[..., 0]

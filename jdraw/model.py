@@ -198,6 +198,7 @@ class DrawModel(nnx.Module):
         kind: str = "two_scale",
         global_net: str = "paper",
         start_widths: Sequence[int] = (8, 16, 32, 64),
+        start_full_res_convs: int = 0,
         rngs: nnx.Rngs,
     ):
         if core not in ("lstm", "fc"):
@@ -222,7 +223,9 @@ class DrawModel(nnx.Module):
         self.move_head = nnx.Linear(hidden, 25, rngs=rngs)
         self.global_net = global_net
         if global_net == "unet":  # ours: whole-canvas view, ~1/8 of the cost
-            self.start_net = StartNet(GLOBAL_CHANNELS, start_widths, rngs=rngs)
+            self.start_net = StartNet(
+                GLOBAL_CHANNELS, start_widths, full_res_convs=start_full_res_convs, rngs=rngs
+            )
         else:
             self.global_first = ConvParams(GLOBAL_CHANNELS, self.trunk.blocks[0][0], 3, rngs)
             self.global_norms = Norms(self.trunk.blocks, rngs)
@@ -270,5 +273,6 @@ def build(cfg, seed: int = 0) -> DrawModel:
         kind=str(cfg.get("kind", "two_scale")),
         global_net=str(cfg.get("global_net", "paper")),
         start_widths=tuple(cfg.get("start_widths", (8, 16, 32, 64))),
+        start_full_res_convs=int(cfg.get("start_full_res_convs", 0)),
         rngs=nnx.Rngs(seed),
     )

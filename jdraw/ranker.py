@@ -252,7 +252,7 @@ def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
         np.zeros((1, STROKE_FEATURES), np.float32),
         np.zeros((1, STROKE_FEATURES), np.float32),
     )
-    logit = np.asarray(logit)[: n * n].reshape(n, n)
+    logit = np.array(logit)[: n * n].reshape(n, n)
     np.fill_diagonal(logit, 0.0)
     prob = 1.0 / (1.0 + np.exp(-logit))
     np.fill_diagonal(prob, 0.0)

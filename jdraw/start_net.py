@@ -55,11 +55,20 @@ class StartNet(nnx.Module):
       widths: channels at each level; each level halves the side (100, 50, 25, 13).
     """
 
-    def __init__(self, in_channels: int, widths: Sequence[int] = WIDTHS, *, rngs: nnx.Rngs):
+    def __init__(
+        self,
+        in_channels: int,
+        widths: Sequence[int] = WIDTHS,
+        *,
+        full_res_convs: int = 0,
+        rngs: nnx.Rngs,
+    ):
         widths = tuple(int(c) for c in widths)
         self.widths = widths
         c0 = widths[0]
         self.stem = _Conv(in_channels + 2, c0, 3, rngs)
+        # More 3x3 layers at full resolution: sharper ends of strokes (exact starts).
+        self.fine = nnx.List([_Conv(c0, c0, 3, rngs) for _ in range(full_res_convs)])
         self.down = nnx.List(
             [_Conv(a, b, 3, rngs) for a, b in zip(widths[:-1], widths[1:])]
         )  # stride 2
@@ -79,6 +88,8 @@ class StartNet(nnx.Module):
         n, h, w, _ = x.shape
         xy = jnp.broadcast_to(coordinates(h, w), (n, h, w, 2))
         f = jax.nn.relu(_conv(jnp.concatenate([x, xy], -1), self.stem))
+        for fine in self.fine:
+            f = jax.nn.relu(_conv(f, fine))
         skips = []
         for down, mid in zip(self.down, self.mid):
             skips.append(f)

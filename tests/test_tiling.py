@@ -175,3 +175,17 @@ def test_trained_planner_draws_a_line_across_tiles_in_one_motion(light):
     assert len(result.strokes) == 1, len(result.strokes)
     precision, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
     assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)
+
+
+def test_character_sized_image_is_fitted_to_one_canvas():
+    # The README's example (京, thick ink, 5 separate pieces) is one character:
+    # the model must see it whole to order its strokes, not 5 regions.
+    import pathlib
+
+    from jdraw import image as im
+    from jdraw import tiling
+
+    path = pathlib.Path(__file__).parent.parent / "examples" / "images" / "kanji.png"
+    prep = im.prepare(im.load_image(path))
+    _, tiles, regions = tiling.layout(prep)
+    assert len(tiles) == 1 and len(regions) == 1

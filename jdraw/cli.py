@@ -64,7 +64,14 @@ def _parser() -> argparse.ArgumentParser:
     out.add_argument(
         "--png",
         metavar="OUT",
-        help="PNG of the strokes coloured by order (blue first, red last), starts dotted",
+        help="PNG of the strokes coloured by order (blue first, red last), starts dotted; "
+        "cropped to the ink",
+    )
+    out.add_argument(
+        "--gif",
+        metavar="OUT",
+        help="animated GIF of the plan being drawn at pen speed: the current stroke black, "
+        "pen-up moves faint, the input light grey behind; cropped to the ink",
     )
     out.add_argument(
         "--trajectory",
@@ -180,7 +187,7 @@ def _draw(args) -> int:
     from jdraw import image as jimage
     from jdraw import tiling
 
-    outputs = [args.svg, args.gcode, args.json, args.png, args.trajectory]
+    outputs = [args.svg, args.gcode, args.json, args.png, args.gif, args.trajectory]
     for o in outputs:
         if o and os.path.dirname(o) and not os.path.isdir(os.path.dirname(o)):
             return _fail(f"cannot write {o!r}: no such directory")
@@ -234,8 +241,13 @@ def _draw(args) -> int:
         if args.png:
             from jdraw import viz
 
-            scale = min(4.0, 800.0 / max(shape))
-            viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale)
+            box = viz.ink_box(result.prepared.ink, strokes)
+            scale = min(4.0, 800.0 / max(box[2] - box[0], box[3] - box[1]))
+            viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale, crop=box)
+        if args.gif:
+            from jdraw import viz
+
+            viz.animate(result, args.gif)
     except (KeyError, ValueError, IndexError) as e:
         return _fail(f"bad G-code template or size: {e}")
     except OSError as e:
@@ -276,7 +288,7 @@ def _draw(args) -> int:
         )
     if not any(outputs):
         print(
-            "no output requested: add --svg, --gcode, --json, --png or --trajectory",
+            "no output requested: add --svg, --gcode, --json, --png, --gif or --trajectory",
             file=sys.stderr,
         )
     return status

@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 import cv2
 import numpy as np
 import pytest
+from PIL import Image
 
 import jdraw
 from jdraw import cli, formats, tiling
@@ -55,7 +56,7 @@ def test_errors_are_clear(tmp_path, capsys):
 def test_draw_writes_every_format(word_photo, tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
     path, lines, shape = word_photo
-    out = {ext: tmp_path / f"out.{ext}" for ext in ("svg", "gcode", "json", "png")}
+    out = {ext: tmp_path / f"out.{ext}" for ext in ("svg", "gcode", "json", "png", "gif")}
     argv = ["draw", str(path), "--no-progress", "--preset", "servo", "--width-mm", "80"]
     for ext, p in out.items():
         argv += [f"--{ext}", str(p)]
@@ -72,6 +73,8 @@ def test_draw_writes_every_format(word_photo, tmp_path, monkeypatch, capsys):
     assert out["gcode"].read_text().count("M3 S90") == len(strokes)
     png = cv2.imread(str(out["png"]))
     assert png is not None and png.shape[1] > shape[1]
+    with Image.open(out["gif"]) as gif:
+        assert gif.n_frames > 10 and max(gif.size) == 640
 
 
 def test_draw_with_the_real_planner(word_photo, tmp_path):

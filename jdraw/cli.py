@@ -7,7 +7,7 @@ import os
 import sys
 import time
 
-from jdraw import formats
+from jdraw import formats, stats
 
 _DESCRIPTION = """\
 Plan how to draw a picture with a pen: a photo or scan of handwriting, a
@@ -214,6 +214,19 @@ def _draw(args) -> int:
         return _fail(str(e))
     shape, strokes = result.shape, result.strokes
     try:
+        plot = stats.plot_stats(
+            strokes,
+            shape,
+            width_mm=args.width_mm,
+            height_mm=args.height_mm,
+            preset=args.preset,
+            feed=args.feed,
+            travel_feed=args.travel_feed,
+            pen_up=args.pen_up,
+            pen_down=args.pen_down,
+            z_up=args.z_up,
+            z_down=args.z_down,
+        )
         if args.svg:
             svg = formats.to_svg(strokes, shape, width_mm=args.width_mm, height_mm=args.height_mm)
             formats.write_text(svg, args.svg)
@@ -237,7 +250,9 @@ def _draw(args) -> int:
             )
             formats.write_text(code, args.gcode)
         if args.json:
-            formats.write_json(formats.to_json(strokes, shape), args.json)
+            data = formats.to_json(strokes, shape)
+            data["stats"] = plot.as_dict()
+            formats.write_json(data, args.json)
         if args.png:
             from jdraw import viz
 
@@ -272,8 +287,9 @@ def _draw(args) -> int:
             status = 1
     h, w = shape
     msg = (
-        f"{args.image}: {w}x{h} px, {len(strokes)} strokes, {len(result.tiles)} tile(s), "
-        f"pen-down length {result.pen_down_length():.0f} px, {time.perf_counter() - t0:.1f} s"
+        f"{args.image}: {w}x{h} px, {len(result.tiles)} tile(s), {plot.summary()}"
+        f"{'' if plot.units == 'mm' else ' (G-code 100 mm wide)'}, "
+        f"{time.perf_counter() - t0:.1f} s"
     )
     if result.truncated:
         msg += f"; {result.truncated} tile(s) hit --max-steps ({result.completed_pixels} px traced)"

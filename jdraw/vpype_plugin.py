@@ -2,8 +2,8 @@
 
 Registered through the ``vpype.plugins`` entry point (``pip install -e ".[vpype]"``)::
 
-    vpype jdraw photo.jpg --width 150mm write out.svg
-    vpype jdraw photo.jpg --size a6 linesimplify gwrite --profile gcodemm out.gcode
+    vpype jdraw --width 150mm photo.jpg write out.svg
+    vpype jdraw --size a6 photo.jpg gwrite --profile gcodemm out.gcode
 
 The command is a vpype *generator*: it plans the image with
 :func:`jdraw.plan_image` and adds one line path per stroke, in drawing order

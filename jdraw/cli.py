@@ -14,7 +14,11 @@ Plan how to draw a picture with a pen: a photo or scan of handwriting, a
 word, a sentence or a line drawing of any size. The image is binarised
 (either ink polarity, uneven lighting), thinned to centrelines, split into
 character-sized regions or tiles, planned stroke by stroke with the learned
-model, and written out in the image's own pixel coordinates.
+model, and written out in the image's own pixel coordinates. The model plans
+on 100x100-pixel canvases, "tiles": a small drawing is fitted to one tile;
+a bigger one is scaled so its lines stay apart, each connected piece of ink
+gets a tile, pieces bigger than a tile are cut into a grid of 100x100 tiles,
+and strokes crossing a tile border are joined again.
 """
 
 _EPILOG = """\
@@ -47,7 +51,9 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     d.add_argument(
-        "image", metavar="IMAGE", help="input image: PNG, JPEG, BMP, TIFF, WebP, PBM/PGM/PPM"
+        "image",
+        metavar="IMAGE",
+        help="input image: PNG, JPEG, GIF (first frame), BMP, TIFF, WebP, PBM/PGM/PPM",
     )
     out = d.add_argument_group("outputs (any combination; with none, only a summary is printed)")
     out.add_argument(
@@ -106,7 +112,8 @@ def _parser() -> argparse.ArgumentParser:
         "--max-steps",
         type=int,
         metavar="N",
-        help="action limit per 100x100 tile (default: the planner's)",
+        help="action limit (pen moves and lifts) per 100x100 tile; a tile that hits it is "
+        "finished by tracing its skeleton (default: 1024)",
     )
     pl.add_argument("--no-progress", action="store_true", help="no progress bar")
 

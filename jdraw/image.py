@@ -62,7 +62,7 @@ def load_image(path: str | os.PathLike) -> np.ndarray:
     if not cv2.haveImageReader(path):
         raise ImageError(
             f"cannot read {path!r}: unsupported image format "
-            "(use PNG, JPEG, BMP, TIFF, WebP or PBM/PGM/PPM)"
+            "(use PNG, JPEG, GIF, BMP, TIFF, WebP or PBM/PGM/PPM)"
         )
     img = cv2.imread(path, cv2.IMREAD_UNCHANGED)
     if img is None or img.size == 0:

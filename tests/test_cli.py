@@ -154,3 +154,19 @@ def test_sheet_fit_keeps_aspect_and_centres():
     np.testing.assert_allclose(b, [[49.5, 49.5]], atol=1e-9)
     with pytest.raises(ValueError):
         robot.to_sheet(strokes, shape, fill=0.0)
+
+
+def test_help_states_defaults_and_gif_input(tmp_path, monkeypatch, capsys, word_photo):
+    from jdraw import planner
+
+    with pytest.raises(SystemExit):
+        cli.main(["draw", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"(default: {planner.Limits.max_steps})" in text
+    assert "GIF" in text and "100x100 tiles" in text and '"tiles"' in text
+    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    path, lines, shape = word_photo
+    gif = tmp_path / "word.gif"
+    Image.open(path).save(gif)
+    assert cli.main(["draw", str(gif), "--no-progress"]) == 0
+    assert "strokes" in capsys.readouterr().out

@@ -12,7 +12,7 @@ import pathlib
 import zipfile
 
 import numpy as np
-from flax import nnx
+from flax import nnx, traverse_util
 
 FORMAT = "jdraw-bundle"
 FORMAT_VERSION = 1
@@ -24,17 +24,10 @@ class BundleError(ValueError):
     """A bundle that is missing, corrupt or does not fit this code."""
 
 
-def _key(path) -> str:
-    return "/".join(str(getattr(p, "key", getattr(p, "idx", p))) for p in path)
-
-
 def state_arrays(model) -> dict[str, np.ndarray]:
-    """Every array of ``model``'s state (params and batch stats), keyed by path."""
-    flat = nnx.to_flat_state(nnx.state(model))
-    return {
-        _key(path): np.asarray(v.get_value() if hasattr(v, "get_value") else v.value)
-        for path, v in flat
-    }
+    """Every array of ``model``'s state (params and batch stats), keyed by ``a/b/0/c`` path."""
+    flat = traverse_util.flatten_dict(nnx.state(model).to_pure_dict())
+    return {"/".join(map(str, k)): np.asarray(v) for k, v in flat.items()}
 
 
 def write(model, model_config: dict, out_dir, provenance: dict | None = None) -> pathlib.Path:
@@ -102,18 +95,20 @@ def load(bundle_dir):
         raise BundleError(f"{path}: missing") from e
     except (zipfile.BadZipFile, ValueError, OSError, EOFError) as e:
         raise BundleError(f"{path}: corrupt ({e})") from e
-    flat = nnx.to_flat_state(nnx.state(mdl))
-    expected = {_key(p) for p, _ in flat}
-    if set(arrays) != expected:
-        miss, extra = sorted(expected - set(arrays)), sorted(set(arrays) - expected)
+    expected = state_arrays(mdl)
+    if set(arrays) != set(expected):
+        miss, extra = sorted(set(expected) - set(arrays)), sorted(set(arrays) - set(expected))
         raise BundleError(
             f"{path}: arrays do not match the model (missing {miss[:3]}, unexpected {extra[:3]})"
         )
-    for p, v in flat:
-        a = arrays[_key(p)]
-        if a.shape != v.shape:
-            raise BundleError(f"{path}: {_key(p)} has shape {a.shape}, the model needs {v.shape}")
-        v.set_value(a) if hasattr(v, "set_value") else setattr(v, "value", a)
-    nnx.update(mdl, nnx.from_flat_state(flat))
+    for k, v in expected.items():
+        if arrays[k].shape != v.shape:
+            raise BundleError(f"{path}: {k} has shape {arrays[k].shape}, the model needs {v.shape}")
+    state = nnx.state(mdl)
+    # Integer path entries (list indices) come back as strings; replace_by_pure_dict maps them.
+    nnx.replace_by_pure_dict(
+        state, traverse_util.unflatten_dict({tuple(k.split("/")): a for k, a in arrays.items()})
+    )
+    nnx.update(mdl, state)
     mdl.eval()
     return mdl, meta["model"]

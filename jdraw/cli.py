@@ -7,14 +7,18 @@ import os
 import sys
 import time
 
-from jdraw import formats
+from jdraw import formats, stats
 
 _DESCRIPTION = """\
 Plan how to draw a picture with a pen: a photo or scan of handwriting, a
 word, a sentence or a line drawing of any size. The image is binarised
 (either ink polarity, uneven lighting), thinned to centrelines, split into
 character-sized regions or tiles, planned stroke by stroke with the learned
-model, and written out in the image's own pixel coordinates.
+model, and written out in the image's own pixel coordinates. The model plans
+on 100x100-pixel canvases, "tiles": a small drawing is fitted to one tile;
+a bigger one is scaled so its lines stay apart, each connected piece of ink
+gets a tile, pieces bigger than a tile are cut into a grid of 100x100 tiles,
+and strokes crossing a tile border are joined again.
 """
 
 _EPILOG = """\
@@ -47,7 +51,9 @@ def _parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     d.add_argument(
-        "image", metavar="IMAGE", help="input image: PNG, JPEG, BMP, TIFF, WebP, PBM/PGM/PPM"
+        "image",
+        metavar="IMAGE",
+        help="input image: PNG, JPEG, GIF (first frame), BMP, TIFF, WebP, PBM/PGM/PPM",
     )
     out = d.add_argument_group("outputs (any combination; with none, only a summary is printed)")
     out.add_argument(
@@ -64,7 +70,14 @@ def _parser() -> argparse.ArgumentParser:
     out.add_argument(
         "--png",
         metavar="OUT",
-        help="PNG of the strokes coloured by order (blue first, red last), starts dotted",
+        help="PNG of the strokes coloured by order (blue first, red last), starts dotted; "
+        "cropped to the ink",
+    )
+    out.add_argument(
+        "--gif",
+        metavar="OUT",
+        help="animated GIF of the plan being drawn at pen speed: the current stroke black, "
+        "pen-up moves faint, the input light grey behind; cropped to the ink",
     )
     out.add_argument(
         "--trajectory",
@@ -99,7 +112,8 @@ def _parser() -> argparse.ArgumentParser:
         "--max-steps",
         type=int,
         metavar="N",
-        help="action limit per 100x100 tile (default: the planner's)",
+        help="action limit (pen moves and lifts) per 100x100 tile; a tile that hits it is "
+        "finished by tracing its skeleton (default: 1024)",
     )
     pl.add_argument("--no-progress", action="store_true", help="no progress bar")
 
@@ -180,7 +194,7 @@ def _draw(args) -> int:
     from jdraw import image as jimage
     from jdraw import tiling
 
-    outputs = [args.svg, args.gcode, args.json, args.png, args.trajectory]
+    outputs = [args.svg, args.gcode, args.json, args.png, args.gif, args.trajectory]
     for o in outputs:
         if o and os.path.dirname(o) and not os.path.isdir(os.path.dirname(o)):
             return _fail(f"cannot write {o!r}: no such directory")
@@ -207,6 +221,19 @@ def _draw(args) -> int:
         return _fail(str(e))
     shape, strokes = result.shape, result.strokes
     try:
+        plot = stats.plot_stats(
+            strokes,
+            shape,
+            width_mm=args.width_mm,
+            height_mm=args.height_mm,
+            preset=args.preset,
+            feed=args.feed,
+            travel_feed=args.travel_feed,
+            pen_up=args.pen_up,
+            pen_down=args.pen_down,
+            z_up=args.z_up,
+            z_down=args.z_down,
+        )
         if args.svg:
             svg = formats.to_svg(strokes, shape, width_mm=args.width_mm, height_mm=args.height_mm)
             formats.write_text(svg, args.svg)
@@ -230,12 +257,19 @@ def _draw(args) -> int:
             )
             formats.write_text(code, args.gcode)
         if args.json:
-            formats.write_json(formats.to_json(strokes, shape), args.json)
+            data = formats.to_json(strokes, shape)
+            data["stats"] = plot.as_dict()
+            formats.write_json(data, args.json)
         if args.png:
             from jdraw import viz
 
-            scale = min(4.0, 800.0 / max(shape))
-            viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale)
+            box = viz.ink_box(result.prepared.ink, strokes)
+            scale = min(4.0, 800.0 / max(box[2] - box[0], box[3] - box[1]))
+            viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale, crop=box)
+        if args.gif:
+            from jdraw import viz
+
+            viz.animate(result, args.gif)
     except (KeyError, ValueError, IndexError) as e:
         return _fail(f"bad G-code template or size: {e}")
     except OSError as e:
@@ -260,8 +294,9 @@ def _draw(args) -> int:
             status = 1
     h, w = shape
     msg = (
-        f"{args.image}: {w}x{h} px, {len(strokes)} strokes, {len(result.tiles)} tile(s), "
-        f"pen-down length {result.pen_down_length():.0f} px, {time.perf_counter() - t0:.1f} s"
+        f"{args.image}: {w}x{h} px, {len(result.tiles)} tile(s), {plot.summary()}"
+        f"{'' if plot.units == 'mm' else ' (G-code 100 mm wide)'}, "
+        f"{time.perf_counter() - t0:.1f} s"
     )
     if result.truncated:
         msg += f"; {result.truncated} tile(s) hit --max-steps ({result.completed_pixels} px traced)"
@@ -276,7 +311,7 @@ def _draw(args) -> int:
         )
     if not any(outputs):
         print(
-            "no output requested: add --svg, --gcode, --json, --png or --trajectory",
+            "no output requested: add --svg, --gcode, --json, --png, --gif or --trajectory",
             file=sys.stderr,
         )
     return status

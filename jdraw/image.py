@@ -21,7 +21,7 @@ from collections.abc import Sequence
 
 import cv2
 import numpy as np
-from skimage import morphology
+from skimage import filters, measure, morphology
 
 from jdraw import raster
 
@@ -62,7 +62,7 @@ def load_image(path: str | os.PathLike) -> np.ndarray:
     if not cv2.haveImageReader(path):
         raise ImageError(
             f"cannot read {path!r}: unsupported image format "
-            "(use PNG, JPEG, BMP, TIFF, WebP or PBM/PGM/PPM)"
+            "(use PNG, JPEG, GIF, BMP, TIFF, WebP or PBM/PGM/PPM)"
         )
     img = cv2.imread(path, cv2.IMREAD_UNCHANGED)
     if img is None or img.size == 0:
@@ -224,13 +224,13 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
     bg = background(g, polarity)
     sign = -1.0 if polarity == "light" else 1.0
     contrast = sign * (1.0 - g / np.maximum(bg, 0.02))
-    ink0 = contrast > _otsu(contrast)
+    ink0 = contrast > filters.threshold_otsu(contrast)
     ground = (~cv2.dilate(ink0.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)).astype(
         np.float32
     )
     if ground.mean() > 0.05:
         contrast = contrast - _masked_blur(contrast, ground, max(g.shape) / 10.0)
-        ink0 = contrast > _otsu(contrast)
+        ink0 = contrast > filters.threshold_otsu(contrast)
     background_px = contrast[~ink0]
     if not ink0.any() or background_px.size == 0:
         raise BlankImageError("no ink found (the image is blank)")
@@ -240,15 +240,6 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
     if level - base < max(0.06, 6.0 * noise):
         raise BlankImageError("no ink found (nothing stands out from the background)")
     return contrast > base + 0.5 * (level - base), polarity
-
-
-def _otsu(values: np.ndarray) -> float:
-    lo, hi = float(values.min()), float(values.max())
-    if hi - lo < 1e-6:
-        return hi
-    u8 = ((values - lo) / (hi - lo) * 255).astype(np.uint8)
-    t, _ = cv2.threshold(u8, 0, 255, cv2.THRESH_BINARY + cv2.THRESH_OTSU)
-    return lo + (t + 0.5) / 255 * (hi - lo)
 
 
 def stroke_width(ink: np.ndarray, skeleton: np.ndarray | None = None) -> float:
@@ -418,30 +409,15 @@ def skeleton_polylines(skel: np.ndarray) -> list[np.ndarray]:
 
 
 def simplify(points: np.ndarray, tol: float) -> np.ndarray:
-    """Ramer-Douglas-Peucker: drops points within ``tol`` of the kept polyline."""
+    """Ramer-Douglas-Peucker: drops points within ``tol`` of the kept polyline.
+
+    Distances are to the kept *segments* (``skimage.measure.approximate_polygon``),
+    so a stroke that doubles back keeps its turning point.
+    """
     pts = np.asarray(points, np.float64)
     if len(pts) < 3 or tol <= 0:
         return pts
-    keep = np.zeros(len(pts), bool)
-    keep[0] = keep[-1] = True
-    stack = [(0, len(pts) - 1)]
-    while stack:
-        i, j = stack.pop()
-        if j <= i + 1:
-            continue
-        a, b = pts[i], pts[j]
-        ab = b - a
-        seg = pts[i + 1 : j] - a
-        n = float(np.hypot(*ab))
-        if n < 1e-9:
-            d = np.hypot(seg[:, 0], seg[:, 1])
-        else:
-            d = np.abs(seg[:, 0] * ab[1] - seg[:, 1] * ab[0]) / n
-        k = int(np.argmax(d))
-        if d[k] > tol:
-            keep[i + 1 + k] = True
-            stack += [(i, i + 1 + k), (i + 1 + k, j)]
-    return pts[keep]
+    return measure.approximate_polygon(pts, tol)
 
 
 # ----------------------------------------------------------------------------- preparing

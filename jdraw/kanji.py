@@ -25,6 +25,7 @@ import json
 import os
 import pathlib
 import re
+import xml.etree.ElementTree as ET
 
 import numpy as np
 
@@ -32,9 +33,9 @@ VIEWBOX = 109.0
 CANVAS = 100
 FIRST_CODE = 0x2E80
 SPLIT_FILE = pathlib.Path(__file__).parent / "data" / "split.json"
-_PATH_RE = re.compile(
-    r'<path\s[^>]*?id="kvg:([0-9a-f]+)(?:-[A-Za-z0-9]+)?-s(\d+)"[^>]*?\sd="([^"]+)"'
-)
+_SVG_PATH = "{http://www.w3.org/2000/svg}path"
+# A stroke's id: kvg:<code point>[-<variant>]-s<stroke number>.
+_STROKE_ID = re.compile(r"kvg:([0-9a-f]+)(?:-[A-Za-z0-9]+)?-s(\d+)")
 
 
 def kanjivg_dir() -> pathlib.Path:
@@ -103,7 +104,11 @@ class KanjiSet:
 
 def parse_svg(text: str) -> list[np.ndarray]:
     """Strokes of one KanjiVG file in stroke order: list of ``[K, 4, 2]``."""
-    found = [(int(n), d) for _, n, d in _PATH_RE.findall(text)]
+    found = []
+    for path in ET.fromstring(text).iter(_SVG_PATH):
+        m = _STROKE_ID.fullmatch(path.get("id", ""))
+        if m and path.get("d"):
+            found.append((int(m[2]), path.get("d")))
     found.sort(key=lambda t: t[0])
     return [_cubics(d) for _, d in found]
 

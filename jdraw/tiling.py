@@ -24,6 +24,7 @@ from collections.abc import Callable, Sequence
 
 import cv2
 import numpy as np
+from scipy.cluster.hierarchy import DisjointSet
 
 from jdraw import image as im
 from jdraw import raster
@@ -377,18 +378,12 @@ def stitch(
     candidates.sort()
     link: dict[tuple[int, int], tuple[int, int]] = {}
     lift_joins = 0
-    chain = {s: s for s in live}  # union-find: links never close a loop
-
-    def root(s: int) -> int:
-        while chain[s] != s:
-            chain[s] = chain[chain[s]]
-            s = chain[s]
-        return s
+    chains = DisjointSet(live)  # links never close a loop
 
     for same, _, _, s1, e1, s2, e2 in candidates:
-        if (s1, e1) in link or (s2, e2) in link or root(s1) == root(s2):
+        if (s1, e1) in link or (s2, e2) in link or chains.connected(s1, s2):
             continue
-        chain[root(s1)] = root(s2)
+        chains.merge(s1, s2)
         link[(s1, e1)] = (s2, e2)
         link[(s2, e2)] = (s1, e1)
         lift_joins += same

@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 import cv2
 import numpy as np
 import pytest
+from PIL import Image
 
 import jdraw
 from jdraw import cli, formats, tiling
@@ -55,7 +56,7 @@ def test_errors_are_clear(tmp_path, capsys):
 def test_draw_writes_every_format(word_photo, tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
     path, lines, shape = word_photo
-    out = {ext: tmp_path / f"out.{ext}" for ext in ("svg", "gcode", "json", "png")}
+    out = {ext: tmp_path / f"out.{ext}" for ext in ("svg", "gcode", "json", "png", "gif")}
     argv = ["draw", str(path), "--no-progress", "--preset", "servo", "--width-mm", "80"]
     for ext, p in out.items():
         argv += [f"--{ext}", str(p)]
@@ -72,6 +73,8 @@ def test_draw_writes_every_format(word_photo, tmp_path, monkeypatch, capsys):
     assert out["gcode"].read_text().count("M3 S90") == len(strokes)
     png = cv2.imread(str(out["png"]))
     assert png is not None and png.shape[1] > shape[1]
+    with Image.open(out["gif"]) as gif:
+        assert gif.n_frames > 10 and max(gif.size) == 640
 
 
 def test_draw_with_the_real_planner(word_photo, tmp_path):
@@ -151,3 +154,19 @@ def test_sheet_fit_keeps_aspect_and_centres():
     np.testing.assert_allclose(b, [[49.5, 49.5]], atol=1e-9)
     with pytest.raises(ValueError):
         robot.to_sheet(strokes, shape, fill=0.0)
+
+
+def test_help_states_defaults_and_gif_input(tmp_path, monkeypatch, capsys, word_photo):
+    from jdraw import planner
+
+    with pytest.raises(SystemExit):
+        cli.main(["draw", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"(default: {planner.Limits.max_steps})" in text
+    assert "GIF" in text and "100x100 tiles" in text and '"tiles"' in text
+    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    path, lines, shape = word_photo
+    gif = tmp_path / "word.gif"
+    Image.open(path).save(gif)
+    assert cli.main(["draw", str(gif), "--no-progress"]) == 0
+    assert "strokes" in capsys.readouterr().out

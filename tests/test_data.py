@@ -71,3 +71,24 @@ def test_demonstration_replays_losslessly_through_planner(kanji_set):
 def test_held_out_splits_have_no_variants(kanji_set, split):
     idx = kanji.split_indices(kanji_set, split)
     assert not any("-" in str(n) for n in kanji_set.names[idx])
+
+
+def test_parse_svg_reads_strokes_whatever_the_attribute_order():
+    d1, d2 = "M10,20C15,25,20,30,30,40", "M50,10L60,90"
+    svg = f"""<?xml version="1.0" encoding="UTF-8"?>
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.0//EN" "svg10.dtd" [
+<!ATTLIST path xmlns:kvg CDATA #FIXED "http://kanjivg.tagaini.net" kvg:type CDATA #IMPLIED >
+]>
+<svg xmlns="http://www.w3.org/2000/svg" xmlns:kvg="http://kanjivg.tagaini.net">
+<g id="kvg:StrokePaths_04e8c"><g id="kvg:04e8c" kvg:element="x">
+  <path d="{d2}" kvg:type="a" id="kvg:04e8c-s2"/>
+  <path id="kvg:04e8c-s1" kvg:type="b" d="{d1}"/>
+  <path id="kvg:04e8c-x3" d="M0,0L1,1"/>
+</g></g>
+<g id="kvg:StrokeNumbers_04e8c"><text transform="matrix(1 0 0 1 1 2)">1</text></g>
+</svg>"""
+    strokes = kanji.parse_svg(svg)
+    assert len(strokes) == 2
+    np.testing.assert_allclose(strokes[0], kanji._cubics(d1))
+    np.testing.assert_allclose(strokes[1], kanji._cubics(d2))
+    np.testing.assert_allclose(strokes[0][0, 0], np.array([10, 20]) * 100 / 109, rtol=1e-6)

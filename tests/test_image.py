@@ -112,3 +112,37 @@ def test_simplify_stays_within_tolerance():
     assert len(q) < len(p) / 4
     precision, recall = im.centreline_scores([q], [p], 0.5 + 1e-6)
     assert recall == 1.0 and precision == 1.0
+
+
+def _rdp_reference(p, tol):
+    """Ramer-Douglas-Peucker with distances to the kept segments, written out (numpy)."""
+    keep = np.zeros(len(p), bool)
+    keep[[0, -1]] = True
+    stack = [(0, len(p) - 1)]
+    while stack:
+        i, j = stack.pop()
+        if j <= i + 1:
+            continue
+        a, b, q = p[i], p[j], p[i + 1 : j]
+        ab = b - a
+        t = np.clip((q - a) @ ab / max(ab @ ab, 1e-300), 0.0, 1.0)
+        d = np.linalg.norm(q - (a + t[:, None] * ab), axis=1)
+        # at the ends of the segment, the nearer end point (as skimage)
+        inside = ((q - a) @ ab > 0) & ((q - b) @ -ab > 0)
+        d = np.where(
+            inside, d, np.minimum(np.linalg.norm(q - a, axis=1), np.linalg.norm(q - b, axis=1))
+        )
+        k = int(np.argmax(d))
+        if d[k] > tol:
+            keep[i + 1 + k] = True
+            stack += [(i + 1 + k, j), (i, i + 1 + k)]
+    return p[keep]
+
+
+def test_simplify_is_rdp_and_keeps_turns(rng):
+    for n in rng.integers(3, 80, 200):
+        p = np.cumsum(rng.normal(size=(n, 2)), 0)
+        np.testing.assert_array_equal(im.simplify(p, 0.8), _rdp_reference(p, 0.8))
+    # A stroke that doubles back along itself keeps its turning point.
+    p = np.array([[0.0, 0.0], [5.0, 0.0], [10.0, 0.0], [4.0, 0.0]])
+    np.testing.assert_array_equal(im.simplify(p, 0.5), p[[0, 2, 3]])

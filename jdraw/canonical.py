@@ -17,10 +17,16 @@ Pixels a plan draws then lie within 1 pixel of the input's ink, not on it:
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
-from scipy import ndimage
 
-_N8 = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]])
+_N8 = np.array([[1, 1, 1], [1, 0, 1], [1, 1, 1]], np.float32)
+
+
+def _degree(ink: np.ndarray) -> np.ndarray:
+    """``int [H, W]``: inked 8-neighbours of every pixel."""
+    d = cv2.filter2D(ink.astype(np.float32), -1, _N8, borderType=cv2.BORDER_CONSTANT)
+    return np.rint(d).astype(np.int32)
 
 
 def _blocks(ink: np.ndarray) -> np.ndarray:
@@ -49,7 +55,7 @@ def drop_staircase_corners(ink: np.ndarray) -> np.ndarray:
         p = np.pad(ink, 1)
         up, down = p[:-2, 1:-1], p[2:, 1:-1]
         left, right = p[1:-1, :-2], p[1:-1, 2:]
-        deg = ndimage.convolve(ink.astype(np.int32), _N8, mode="constant")
+        deg = _degree(ink)
         l_shape = (up | down) & (left | right) & ~(up & down) & ~(left & right)
         corner = ink & (deg == 2) & l_shape
         # Remove only one of two adjacent corner candidates (keep the path connected).
@@ -97,7 +103,7 @@ def _end_heading(ink: np.ndarray, y: int, x: int, reach: int = 3) -> np.ndarray 
 
 def bridge_gaps(ink: np.ndarray, min_cos: float = 0.7) -> np.ndarray:
     """Fills the pixel between two line ends 2 pixels apart that point at each other."""
-    deg = ndimage.convolve(ink.astype(np.int32), _N8, mode="constant")
+    deg = _degree(ink)
     ends = list(zip(*np.nonzero(ink & (deg == 1))))
     out = ink.copy()
     for a in range(len(ends)):
@@ -123,6 +129,8 @@ def canonicalise(ink) -> np.ndarray:
     from skimage.morphology import skeletonize
 
     ink = np.asarray(ink, bool)
+    if not ink.any():
+        return ink.copy()
     if is_thick(ink):
         ink = skeletonize(ink)
     ink = drop_staircase_corners(ink)

@@ -1,0 +1,76 @@
+"""The "beyond the paper" table: the paper's model beside ours, one ingredient at a time.
+
+  python -m jdraw.beyond [--results results] [--out results/beyond.md]
+
+Reads the ``eval.py`` results of the paper's model (``paper.json``, scored
+with our ranker too) and of ours (``ours.json``) and writes a Markdown table:
+for each planner and stroke order, order agreement over matched pairs and
+over all pairs, exact order, direction, stroke and pixel accuracy and drawn /
+true strokes on the whole KanjiVG test split, and stroke accuracy and
+drawn / true strokes on the split drawn by OpenCV and with a 3-px pen.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+
+ROWS = (
+    ("paper", "model", "paper's model (Table I row 1), as traced"),
+    ("paper", "xy", "paper's model, strokes sorted by start x + y (reference rule)"),
+    ("paper", "ranker", "paper's model + learned stroke ranker"),
+    ("ours", "model", "ours: whole-canvas start model, as traced"),
+    ("ours", "xy", "ours, strokes sorted by start x + y"),
+    ("ours", "ranker", "ours + learned stroke ranker (bundled default)"),
+)
+
+
+def _cell(res: dict, split: str, order: str, key: str, fmt: str = "{:.4f}") -> str:
+    try:
+        return fmt.format(res[split]["by_order"][order][key])
+    except KeyError:
+        return "—"
+
+
+def table(results_dir) -> str:
+    d = pathlib.Path(results_dir)
+    res = {
+        n: json.loads((d / f"{n}.json").read_text())
+        for n in ("paper", "ours")
+        if (d / f"{n}.json").exists()
+    }
+    head = (
+        "| planner and order | order, matched pairs | order, all pairs | exact order | "
+        "direction | stroke acc | pixel acc | strokes / true | OpenCV: stroke acc, strokes / "
+        "true | 3-px pen: stroke acc, strokes / true |\n" + "| --- " * 10 + "|"
+    )
+    lines = [head]
+    for name, order, label in ROWS:
+        r = res.get(name)
+        if r is None:
+            continue
+        c = lambda split, key, fmt="{:.4f}", r=r, order=order: _cell(r, split, order, key, fmt)  # noqa: E731
+        lines.append(
+            f"| {label} | {c('test_full', 'order_agreement')} | "
+            f"{c('test_full', 'order_all_pairs')} | {c('test_full', 'exact_order', '{:.3f}')} | "
+            f"{c('test_full', 'direction_agreement')} | {c('test_full', 'stroke_acc')} | "
+            f"{c('test_full', 'pixel_acc')} | {c('test_full', 'stroke_ratio', '{:.3f}')} | "
+            f"{c('test_cv2', 'stroke_acc')}, {c('test_cv2', 'stroke_ratio', '{:.3f}')} | "
+            f"{c('test_thick3', 'stroke_acc')}, {c('test_thick3', 'stroke_ratio', '{:.3f}')} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--results", default="results")
+    p.add_argument("--out", default="results/beyond.md")
+    a = p.parse_args(argv)
+    text = table(a.results)
+    pathlib.Path(a.out).write_text(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -23,8 +23,8 @@ def get_config() -> ml_collections.ConfigDict:
     c = paper.get_config()
     c.name = "ours"
     c.model.global_net = "unet"
-    c.model.start_widths = (16, 16, 32, 64)
-    c.model.start_full_res_convs = 1
+    c.model.start_widths = (8, 16, 32, 64)
+    c.model.start_full_res_convs = 0
     c.train.update(
         dict(
             init_from="jdraw/checkpoints/default",
@@ -32,7 +32,7 @@ def get_config() -> ml_collections.ConfigDict:
             learning_rate=1e-3,
             global_batch=32,
             global_per_char=4,
-            num_steps=1500,
+            num_steps=1200,
             log_every=20,
             checkpoint_every=100,
         )

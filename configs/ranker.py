@@ -21,9 +21,9 @@ def get_config() -> ml_collections.ConfigDict:
     c.name = "ranker"
     c.stage = "ranker"
     c.seed = 0
-    c.tracer = "jdraw/checkpoints/default"  # whose strokes the ranker learns to order
+    c.tracer = "runs/ours/bundle"  # whose strokes the ranker learns to order
     c.out = "runs/ranker/bundle"
-    c.chars = 500
+    c.chars = 300
     c.demo_chars = 2500
     c.chunk = 100
     c.augment = 1.0

@@ -112,3 +112,29 @@ def load(bundle_dir):
     nnx.update(mdl, state)
     mdl.eval()
     return mdl, meta["model"]
+
+
+def fill(model, arrays: dict[str, np.ndarray], *, partial: bool = False) -> int:
+    """Sets ``model``'s state from arrays keyed as :func:`state_arrays` keys them.
+
+    With ``partial``, only the arrays the model has with the same shape are
+    set (others are skipped); otherwise every array must match. Returns the
+    number of arrays set.
+
+    Raises:
+      BundleError: when not ``partial`` and the arrays do not fit the model.
+    """
+    expected = state_arrays(model)
+    use = {k: a for k, a in arrays.items() if k in expected and a.shape == expected[k].shape}
+    if not partial and len(use) != len(expected):
+        bad = sorted(set(expected) - set(use))
+        raise BundleError(f"arrays do not fit the model: {bad[:3]} missing or of the wrong shape")
+    state = nnx.state(model)
+    pure = traverse_util.flatten_dict(state.to_pure_dict())
+    for k in pure:
+        key = "/".join(map(str, k))
+        if key in use:
+            pure[k] = use[key]
+    nnx.replace_by_pure_dict(state, traverse_util.unflatten_dict(pure))
+    nnx.update(model, state)
+    return len(use)

@@ -29,7 +29,7 @@ import jax
 import jax.numpy as jnp
 from flax import nnx
 
-from jdraw.start_net import StartNet
+from jdraw.start_net import NOT_CANDIDATE, StartNet, start_candidates
 from jdraw.state import GLOBAL_CHANNELS, LOCAL_CHANNELS
 
 PATCH = 5
@@ -255,10 +255,19 @@ class DrawModel(nnx.Module):
         """``h [..., H]`` -> ``(move logits [..., 25], touch logit [...])``."""
         return self.move_head(h), self.touch_head(h)[..., 0]
 
-    def global_logits(self, states):
-        """``[N, 100, 100, 4]`` -> next-start logits ``[N, 100, 100]``."""
+    def global_logits(self, states, restrict: bool = True):
+        """``[N, 100, 100, 4]`` -> next-start logits ``[N, 100, 100]``.
+
+        ``restrict``: for our start model, planning prefers the pixels where a
+        stroke can begin (:func:`jdraw.start_net.start_candidates`); training
+        scores the raw logits. The paper's model is never restricted.
+        """
         if self.global_net == "unet":
-            return self.start_net(states)
+            logits = self.start_net(states)
+            if restrict:
+                ok = start_candidates(states)
+                logits = jnp.where(ok, logits, logits + NOT_CANDIDATE)
+            return logits
         f = encode(states, self.global_first, self.trunk, self.global_norms)
         return _conv(f, self.global_head.w[...], self.global_head.b[...], "VALID")[..., 0]
 

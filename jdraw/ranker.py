@@ -413,13 +413,10 @@ def load(bundle_dir) -> Ranker | None:
             arrays = {k: z[k] for k in z.files}
     except (OSError, ValueError) as e:
         raise bundle.BundleError(f"{d / 'ranker.npz'}: unreadable ({e})") from e
-    flat = nnx.to_flat_state(nnx.state(model))
-    for p, v in flat:
-        key = bundle._key(p)
-        if key not in arrays or arrays[key].shape != v.shape:
-            raise bundle.BundleError(f"{d / 'ranker.npz'}: {key} missing or of the wrong shape")
-        v.set_value(arrays[key]) if hasattr(v, "set_value") else setattr(v, "value", arrays[key])
-    nnx.update(model, nnx.from_flat_state(flat))
+    try:
+        bundle.fill(model, arrays)
+    except bundle.BundleError as e:
+        raise bundle.BundleError(f"{d / 'ranker.npz'}: {e}") from e
     return model
 
 

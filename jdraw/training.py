@@ -79,7 +79,7 @@ def global_loss(model: M.DrawModel, g: dict):
     the softmax is taken over those pixels (plus the true start).
     """
     x = jax.vmap(S.global_state)(g["target"], g["visited"], g["last"], g["pen"], g["has_pen"])
-    logits = model.global_logits(x).reshape(x.shape[0], -1)
+    logits = model.global_logits(x, restrict=False).reshape(x.shape[0], -1)
     allowed = jax.vmap(S.allowed_starts, in_axes=(0, 0, None))(g["target"], g["visited"], False)
     allowed = allowed.reshape(x.shape[0], -1) | jax.nn.one_hot(
         g["start"], logits.shape[1], dtype=bool
@@ -100,19 +100,11 @@ def init_from_bundle(model: M.DrawModel, bundle_dir) -> int:
     Used to train a new global model beside a trained local model
     (``configs/ours.py``). Returns the number of arrays copied.
     """
-    from jdraw import bundle as B
+    from jdraw import bundle
 
     with np.load(pathlib.Path(bundle_dir) / "params.npz") as z:
         arrays = {k: z[k] for k in z.files}
-    flat = nnx.to_flat_state(nnx.state(model))
-    n = 0
-    for p, v in flat:
-        a = arrays.get(B._key(p))
-        if a is not None and a.shape == v.shape:
-            v.set_value(a) if hasattr(v, "set_value") else setattr(v, "value", a)
-            n += 1
-    nnx.update(model, nnx.from_flat_state(flat))
-    return n
+    return bundle.fill(model, arrays, partial=True)
 
 
 def make_step(graphdef, tx, global_weight: float):

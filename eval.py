@@ -1,6 +1,10 @@
 """Evaluates a checkpoint on KanjiVG as the paper's §IV-A.
 
-  python eval.py --checkpoint jdraw/checkpoints/default --name paper
+  python eval.py --name beyond_ours        # the bundled default (ours)
+  python eval.py --checkpoint jdraw/checkpoints/paper --name beyond_paper \
+      --ranker jdraw/checkpoints/default
+  python eval.py --checkpoint jdraw/checkpoints/paper --name paper --nocanonicalise \
+      --variants=   # Table I, row 1, as measured
 
 Writes results/NAME.json (pixel/stroke accuracy, stroke order over matched
 and over all pairs, exact order, direction, drawn/true strokes, on 100 random
@@ -26,6 +30,9 @@ _VARIANTS = flags.DEFINE_list(
     "variants", ["cv2", "thick3"], "Other drawings of the test split (cv2, thick3, aa)."
 )
 _VCHARS = flags.DEFINE_integer("variant_chars", None, "Test characters for the variants (all).")
+_CANON = flags.DEFINE_bool(
+    "canonicalise", True, "Canonicalise inputs first (jdraw.plan's default)."
+)
 _RANKER = flags.DEFINE_string(
     "ranker", None, "Folder with a stroke ranker to use instead of the checkpoint's own."
 )
@@ -45,6 +52,7 @@ def main(argv):
         variants=tuple(_VARIANTS.value),
         variant_chars=_VCHARS.value,
         ranker_from=_RANKER.value,
+        canonicalise=_CANON.value,
     )
     for k, r in res.items():
         if not isinstance(r, dict):

@@ -27,7 +27,7 @@ def get_config() -> ml_collections.ConfigDict:
     c.model.start_full_res_convs = 0
     c.train.update(
         dict(
-            init_from="jdraw/checkpoints/default",
+            init_from="jdraw/checkpoints/paper",
             train_local=False,
             learning_rate=1e-3,
             global_batch=32,

@@ -36,9 +36,9 @@ def _cell(res: dict, split: str, order: str, key: str, fmt: str = "{:.4f}") -> s
 def table(results_dir) -> str:
     d = pathlib.Path(results_dir)
     res = {
-        n: json.loads((d / f"{n}.json").read_text())
+        n: json.loads((d / f"beyond_{n}.json").read_text())
         for n in ("paper", "ours")
-        if (d / f"{n}.json").exists()
+        if (d / f"beyond_{n}.json").exists()
     }
     head = (
         "| planner and order | order, matched pairs | order, all pairs | exact order | "

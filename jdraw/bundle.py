@@ -16,7 +16,8 @@ from flax import nnx, traverse_util
 
 FORMAT = "jdraw-bundle"
 FORMAT_VERSION = 1
-DEFAULT_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "default"
+DEFAULT_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "default"  # ours
+PAPER_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "paper"  # Table I, row 1
 DEFAULT_MODEL = {"hidden": 256, "core": "lstm", "extraction": "late"}
 
 

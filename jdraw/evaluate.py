@@ -48,6 +48,7 @@ def plan_chars(
     progress: bool = True,
     max_steps=None,
     style: str | None = None,
+    canonicalise: bool = True,
 ):
     """Plans characters ``idx`` (no augmentation) as traced (``order="model"``).
 
@@ -72,7 +73,13 @@ def plan_chars(
         n = len(chunk)
         if n < batch:  # pad to the compiled batch size
             chunk = np.concatenate([chunk, np.zeros((batch - n, 100, 100), bool)])
-        p = api.plan(chunk, checkpoint=checkpoint, max_steps=max_steps, order="model")
+        p = api.plan(
+            chunk,
+            checkpoint=checkpoint,
+            max_steps=max_steps,
+            order="model",
+            canonicalise=canonicalise,
+        )
         parts.append(Plan(p.strokes[:n], p.actions[:n], p.lengths[:n], p.truncated[:n]))
     T = max(p.actions.shape[1] for p in parts)
     plan = Plan(
@@ -100,6 +107,7 @@ def evaluate(
     progress: bool = True,
     figure_chars: int = 6,
     ranker_from=None,
+    canonicalise: bool = True,
 ) -> dict:
     """Scores a checkpoint; writes ``{out_dir}/{name}.json`` and ``{name}_fig3.png``.
 
@@ -113,6 +121,8 @@ def evaluate(
         (default: all).
       ranker_from: a folder holding a stroke ranker to use in place of the
         checkpoint's own (to score another planner's strokes with it).
+      canonicalise: passed to ``jdraw.plan`` (False reproduces Table I as
+        measured before canonical inputs existed).
 
     Each split's entry holds the metrics of the order ``jdraw.plan`` uses by
     default for this checkpoint (the ranker's if it has one) and, under
@@ -120,9 +130,10 @@ def evaluate(
     """
     ks = kanji.load(progress=progress)
     rng = np.random.default_rng(seed)
-    rk = api.load_ranker(ranker_from if ranker_from is not None else checkpoint)
+    own = api.load_ranker(checkpoint)
+    rk = api.load_ranker(ranker_from) if ranker_from is not None else own
     orders = ["model", "xy"] + (["ranker"] if rk is not None else [])
-    default = "ranker" if rk is not None else "model"
+    default = "ranker" if own is not None else "model"  # what jdraw.plan does with it
     res: dict = {
         "checkpoint": str(checkpoint) if checkpoint is not None else "bundled default",
         "default_order": default,
@@ -144,7 +155,13 @@ def evaluate(
     for key, (idx, style) in sets.items():
         t = time.time()
         demos, inputs, plan = plan_chars(
-            ks, idx, checkpoint, batch=batch, progress=progress, style=style
+            ks,
+            idx,
+            checkpoint,
+            batch=batch,
+            progress=progress,
+            style=style,
+            canonicalise=canonicalise,
         )
         plan_s = time.time() - t
         by = {}

@@ -132,7 +132,7 @@ def main():
     ap.add_argument("--runs", default="runs")
     ap.add_argument("--notes", default=None, help="markdown file appended to table1.md")
     args = ap.parse_args()
-    rows = collect(args.results, args.runs, {"paper": "jdraw/checkpoints/default"})
+    rows = collect(args.results, args.runs, {"paper": "jdraw/checkpoints/paper"})
     out = pathlib.Path(args.results)
     out.mkdir(parents=True, exist_ok=True)
     (out / "table1.json").write_text(json.dumps({"rows": rows}, indent=2) + "\n")

@@ -165,3 +165,10 @@ def test_faults_off_draws_like_verify(clean):
     np.testing.assert_array_equal(plain.drawn, clean.reports[0].drawn)
     assert dataclasses.asdict(plain.faults) == dataclasses.asdict(faults.Faults())
     assert model.N_ARM == len(plain.fault_log[0]["joint_bias_rad"])
+
+
+def test_cli_rejects_bad_faults(capsys):
+    from jdraw import cli
+
+    assert cli.main(["draw", "examples/images/hello.jpg", "--robot", "--faults", "pen=1"]) == 2
+    assert "unknown fault" in capsys.readouterr().err

@@ -200,7 +200,8 @@ def residual_strokes(residual: np.ndarray, planner=None, checkpoint=None) -> lis
     if not todo:
         return out
     kwargs = {} if checkpoint is None else {"checkpoint": checkpoint}
-    size = 1 << (len(todo) - 1).bit_length()  # few batch shapes: few compiles
+    # the batch's own size (as a power of two), not the count left: one compile
+    size = 1 << (len(residual) - 1).bit_length()
     batch = np.zeros((size, raster.CANVAS, raster.CANVAS), bool)
     batch[: len(todo)] = residual[todo]
     plan = planner(batch, **kwargs)
@@ -348,3 +349,59 @@ def draw_closed_loop(
         reports=reports,
         seconds=secs,
     )
+
+
+def image_closed_loop(
+    strokes,
+    shape: tuple[int, int],
+    faults: Faults | None = None,
+    rounds: int = 2,
+    options: RobotOptions | None = None,
+    fill: float = 0.9,
+) -> LoopResult:
+    """The loop for ``jdraw.plan_image`` strokes (input pixels of an ``(H, W)`` image).
+
+    The strokes are fitted onto the sheet as ``jdraw draw --trajectory`` does
+    (:func:`jdraw.robot.to_sheet`); their render on the canvas is the target.
+    """
+    from jdraw.robot.image import to_sheet
+
+    sheet = to_sheet(strokes, shape, fill)
+    plan = types.Plan(
+        [sheet], np.zeros((1, 0, 3), np.int32), np.zeros(1, np.int32), np.zeros(1, bool)
+    )
+    return draw_closed_loop(plan, faults, rounds, options=options)
+
+
+def picture(result: LoopResult, path: str | os.PathLike, index: int = 0, scale: int = 4) -> str:
+    """Writes a PNG: target | sheet after round 0 | sheet after the last round.
+
+    The sheets are the paper's own frame; light blue is the target at its
+    registered place, black the first pass's ink, red the redrawn ink.
+    """
+    a = result.transform[index, -1]
+    pts = np.floor(look.apply_affine(a, np.argwhere(result.target[index])[:, ::-1]) + 0.5)
+    pts = pts.astype(int)
+    ok = np.all((pts >= 0) & (pts < raster.CANVAS), axis=1)
+    placed = np.zeros_like(result.target[index])
+    placed[pts[ok, 1], pts[ok, 0]] = True
+    first = result.sheets[index, 0]
+    panels = []
+    for k, sheet in enumerate([None, first, result.sheets[index, -1]]):
+        img = np.full((raster.CANVAS, raster.CANVAS, 3), 255, np.uint8)
+        if sheet is None:
+            img[result.target[index]] = (20, 20, 20)
+            label = "target"
+        else:
+            img[placed] = (235, 200, 160)
+            img[sheet] = (40, 40, 220)
+            img[first] = (20, 20, 20)
+            r = 0 if k == 1 else result.rounds - 1
+            label = f"round {r}: IoU {result.iou[index, r]:.2f}"
+        img = cv2.resize(img, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST)
+        cv2.putText(img, label, (6, 18), cv2.FONT_HERSHEY_SIMPLEX, 0.5, (0, 0, 0), 1, cv2.LINE_AA)
+        panels.append(img)
+        panels.append(np.full((img.shape[0], 6, 3), 200, np.uint8))
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    cv2.imwrite(os.fspath(path), np.concatenate(panels[:-1], axis=1))
+    return os.fspath(path)

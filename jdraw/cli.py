@@ -117,7 +117,7 @@ def _parser() -> argparse.ArgumentParser:
         help="drawing height in mm; with --width-mm the drawing fits inside both",
     )
 
-    rb = d.add_argument_group("robot (--trajectory)")
+    rb = d.add_argument_group("robot (--trajectory, --robot)")
     rb.add_argument(
         "--sheet-mm",
         type=float,

@@ -47,7 +47,7 @@ def test_parse_and_presets():
     assert f.seed == 3 and f.sheet_offset_mm == (1.0, 2.0)
     assert f.early_lift_mm == faults.MODERATE.early_lift_mm
     assert faults.Faults.parse("") == faults.Faults() and not faults.Faults().any
-    assert faults.only("early lift").active() == {"early_lift_mm": 2.0}
+    assert faults.only("early lift").active() == {"early_lift_mm": 3.0}
     with pytest.raises(ValueError, match="unknown fault"):
         faults.Faults.parse("pen_wobble=1")
     with pytest.raises(ValueError, match="bad value"):

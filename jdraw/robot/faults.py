@@ -118,7 +118,7 @@ MODERATE = Faults(
     joint_bias_rad=0.002,
     joint_noise_rad=0.001,
     pen_skip_per_mm=0.01,
-    early_lift_mm=2.0,
+    early_lift_mm=3.0,
     sheet_wobble_mm=2.5,
 )
 PRESETS = {"none": Faults(), "moderate": MODERATE}

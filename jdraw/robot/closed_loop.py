@@ -185,11 +185,30 @@ def clip_to(strokes, allowed: np.ndarray) -> list[np.ndarray]:
     return out
 
 
-def residual_strokes(residual: np.ndarray, planner=None, checkpoint=None) -> list[list[np.ndarray]]:
+def end_on_ink(strokes, covered: np.ndarray) -> list[np.ndarray]:
+    """Turns strokes that start on ``covered`` pixels and end off them around.
+
+    A pen that lifts early then loses the end of the stroke over ink that is
+    already on the paper, not the piece the redraw is for.
+    """
+    out = []
+    for s in strokes:
+        a, b = (np.floor(s[k] + 0.5).astype(int) for k in (0, -1))
+        if covered[a[1], a[0]] and not covered[b[1], b[0]]:
+            s = s[::-1]
+        out.append(s)
+    return out
+
+
+def residual_strokes(
+    residual: np.ndarray, planner=None, checkpoint=None, covered: np.ndarray | None = None
+) -> list[list[np.ndarray]]:
     """Plans ``residual`` ``bool [B, 100, 100]`` with ``jdraw.plan``; cut to it and completed.
 
     Pixels the plan leaves undrawn are traced along their skeleton, as
-    ``jdraw.plan_image`` does for truncated tiles.
+    ``jdraw.plan_image`` does for truncated tiles. With ``covered`` (``bool
+    [B, 100, 100]``, target pixels already inked) strokes are oriented to end
+    on ink (:func:`end_on_ink`).
     """
     if planner is None:
         import jdraw
@@ -210,7 +229,7 @@ def residual_strokes(residual: np.ndarray, planner=None, checkpoint=None) -> lis
         left = residual[i] & ~raster.render_strokes(strokes)
         if left.any():
             strokes += clip_to(im.skeleton_polylines(left), residual[i])
-        out[i] = strokes
+        out[i] = strokes if covered is None else end_on_ink(strokes, covered[i])
     return out
 
 
@@ -241,6 +260,8 @@ def draw_closed_loop(
     overlap_mm: float = 2.0,
     min_missing_px: int = 2,
     look_with: str = "auto",
+    press_step_mm: float = 1.25,
+    max_press_mm: float = 4.0,
     checkpoint=None,
     planner=None,
 ) -> LoopResult:
@@ -258,6 +279,9 @@ def draw_closed_loop(
       overlap_mm: a redraw runs this far along the target into ink already there.
       min_missing_px: missing pieces smaller than this are left alone.
       look_with: ``"auto"``, ``"render"`` or ``"ink"`` (see :func:`look.photograph`).
+      press_step_mm: each redraw round presses the pen this much deeper (the
+        spring-loaded tip takes it up), up to ``max_press_mm``: where a sheet
+        sags away from the pen, the redraw still reaches it.
       checkpoint, planner: for the residual plans (default: ``jdraw.plan``).
 
     Returns:
@@ -286,7 +310,9 @@ def draw_closed_loop(
         rep = verify(todo, pass_options, faults=faults, pass_index=r)
         # Redraws are shorter than the plan: padding them to its length reuses
         # the compiled rollout (a new length compiles for minutes on a CPU).
-        pass_options = dataclasses.replace(options, pad_steps=int(rep.t.size))
+        press = min(options.press_mm + (r + 1) * press_step_mm, max_press_mm)
+        press = max(press, options.press_mm)
+        pass_options = dataclasses.replace(options, pad_steps=int(rep.t.size), press_mm=press)
         sheet = sheet | rep.drawn
         reports.append(rep)
         t1 = time.perf_counter()
@@ -310,7 +336,7 @@ def draw_closed_loop(
             secs["plan"].append(0.0)
             break
         want = np.stack([grow_along(miss[i], target[i], grow) for i in range(b)])
-        strokes = residual_strokes(want, planner, checkpoint)
+        strokes = residual_strokes(want, planner, checkpoint, target & ~miss)
         secs["plan"].append(time.perf_counter() - t2)
         for i in range(b):
             redrawn[i].append(strokes[i])

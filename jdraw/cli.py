@@ -131,7 +131,7 @@ def _parser() -> argparse.ArgumentParser:
         help="drawing height in mm; with --width-mm the drawing fits inside both",
     )
 
-    rb = d.add_argument_group("robot (--trajectory)")
+    rb = d.add_argument_group("robot (--trajectory, --robot)")
     rb.add_argument(
         "--sheet-mm",
         type=float,
@@ -140,6 +140,19 @@ def _parser() -> argparse.ArgumentParser:
         help="side of the square sheet in front of the arm; the drawing spans 90%% of it "
         "(default 100, the arm's comfortable reach; 1 mm per canvas pixel)",
     )
+    rb.add_argument(
+        "--robot",
+        action="store_true",
+        help="draw with the simulated arm, look at the sheet and redraw what is missing; "
+        "prints the IoU with the target after each round",
+    )
+    rb.add_argument(
+        "--faults",
+        metavar="SPEC",
+        help="robot errors for --robot: 'moderate' and/or name=value,... e.g. "
+        "'pen_skip_per_mm=0.02,sheet_offset_mm=3:-2' (jdraw.robot.Faults; default none)",
+    )
+    rb.add_argument("--rounds", type=int, default=2, help="most redraw rounds (default 2)")
 
     gc = d.add_argument_group("G-code")
     gc.add_argument(
@@ -204,6 +217,13 @@ def _draw(args) -> int:
         return _fail("--min-gap must be positive")
     if not 0 < args.sheet_mm <= 1000:
         return _fail("--sheet-mm must be in (0, 1000]")
+    if args.robot:
+        from jdraw.robot.faults import Faults
+
+        try:
+            faults = Faults.parse(args.faults)
+        except ValueError as e:
+            return _fail(str(e))
     t0 = time.perf_counter()
     try:
         img = jimage.load_image(args.image)
@@ -292,6 +312,12 @@ def _draw(args) -> int:
         )
         if not ok:
             status = 1
+    if args.robot:
+        from jdraw.robot import closed_loop, options
+
+        opts = options.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
+        res = closed_loop.image_closed_loop(strokes, shape, faults, args.rounds, opts)
+        arm_msg = "\n".join(filter(None, [arm_msg, res.summary()]))
     h, w = shape
     msg = (
         f"{args.image}: {w}x{h} px, {len(result.tiles)} tile(s), {plot.summary()}"
@@ -309,7 +335,7 @@ def _draw(args) -> int:
             "`offending`); the trajectory was written but must not be run",
             file=sys.stderr,
         )
-    if not any(outputs):
+    if not any(outputs) and not args.robot:
         print(
             "no output requested: add --svg, --gcode, --json, --png, --gif or --trajectory",
             file=sys.stderr,

@@ -13,6 +13,9 @@ import io
 with contextlib.redirect_stdout(io.StringIO()):
     import mujoco.mjx  # noqa: F401
 
+from jdraw.robot.closed_loop import LoopResult as LoopResult
+from jdraw.robot.closed_loop import draw_closed_loop as draw_closed_loop
+from jdraw.robot.faults import Faults as Faults
 from jdraw.robot.image import image_trajectory as image_trajectory
 from jdraw.robot.image import to_sheet as to_sheet
 from jdraw.robot.model import canvas_to_world as canvas_to_world

@@ -36,6 +36,9 @@ def load(options: RobotOptions | None = None) -> mujoco.MjModel:
     )
     c, s = np.cos(options.sheet_yaw / 2), np.sin(options.sheet_yaw / 2)
     m.geom_quat[g] = (c, 0.0, 0.0, s)
+    # The compiler marked the unrotated paper as sharing the world frame, which
+    # makes C MuJoCo (rendering) ignore the new quat; MJX always applies it.
+    m.geom_sameframe[g] = 0
     # Broadphase bounds follow the size.
     m.geom_rbound[g] = float(np.linalg.norm(m.geom_size[g]))
     m.geom_aabb[g] = np.concatenate([np.zeros(3), m.geom_size[g]])

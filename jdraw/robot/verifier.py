@@ -13,6 +13,7 @@ import numpy as np
 from mujoco import mjx
 
 from jdraw import types
+from jdraw.robot import faults as F
 from jdraw.robot import ik, model, rollout, trajectory
 from jdraw.robot.options import RobotOptions
 
@@ -51,6 +52,10 @@ class Report:
       touch: ``[B, T]`` bool nib-paper contact.
       wall_time_s: s spent in IK and simulation (compilation included on the
         first call of a shape).
+      faults: the :class:`jdraw.robot.faults.Faults` the arm drew under (all
+        off by default); ``drawn`` is in the frame of the real sheet.
+      fault_log: per image, what the faults did (joint bias drawn, mm of ink
+        lost to skips and early lifts).
     """
 
     reachable: np.ndarray
@@ -75,6 +80,8 @@ class Report:
     tip: np.ndarray
     touch: np.ndarray
     wall_time_s: float
+    faults: F.Faults = dataclasses.field(default_factory=F.Faults)
+    fault_log: list = dataclasses.field(default_factory=list)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -127,6 +134,8 @@ def _run(
     seed,
     targets,
     valid,
+    ctrl_offset,
+    pen_ok,
     sheet,
     lo,
     hi,
@@ -142,22 +151,24 @@ def _run(
 ):
     tip_site, tip_geom, paper_geom = ids_key
 
-    def one(targets, valid):
+    def one(targets, valid, ctrl_offset, pen_ok):
         q, err, tilt = ik.solve_path(
             mx, d, seed, targets, tip_site, lo, hi, damping, iters_first, iters
         )
         qd = (jnp.concatenate([q[1:], q[-1:]]) - jnp.concatenate([q[:1], q[:-1]])) / (2 * dt)
         qd = jnp.where(valid[:, None], qd, 0.0)
-        ctrl = q + ff_gain * qd
-        qpos0 = jnp.concatenate([q[0], jnp.zeros(mx.nq - model.N_ARM, q.dtype)])
-        d0 = d.replace(qpos=qpos0, qvel=jnp.zeros_like(d.qvel), ctrl=q[0])
+        # Joint faults move the servo targets; the arm starts at rest on the first.
+        ctrl = q + ff_gain * qd + ctrl_offset
+        q0 = q[0] + ctrl_offset[0]
+        qpos0 = jnp.concatenate([q0, jnp.zeros(mx.nq - model.N_ARM, q.dtype)])
+        d0 = d.replace(qpos=qpos0, qvel=jnp.zeros_like(d.qvel), ctrl=q0)
         out = rollout.rollout(
-            mx, d0, ctrl, valid, n_sub, tip_geom, paper_geom, tip_site, sheet, nib
+            mx, d0, ctrl, valid & pen_ok, n_sub, tip_geom, paper_geom, tip_site, sheet, nib
         )
         out.update(q_ref=q, err=err, tilt=tilt)
         return out
 
-    return jax.vmap(one)(targets, valid)
+    return jax.vmap(one)(targets, valid, ctrl_offset, pen_ok)
 
 
 def _iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -166,29 +177,46 @@ def _iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(union > 0, inter / np.maximum(union, 1), 1.0)
 
 
-def verify(plan: types.Plan, options: RobotOptions | None = None, **overrides) -> Report:
+def verify(
+    plan: types.Plan,
+    options: RobotOptions | None = None,
+    *,
+    faults: F.Faults | None = None,
+    pass_index: int = 0,
+    **overrides,
+) -> Report:
     """Draws each image of ``plan`` with the simulated arm and compares with the plan.
 
     Args:
       plan: a batch of plans; only ``plan.strokes`` is used.
       options: a :class:`RobotOptions`; keyword ``overrides`` replace its
         fields, e.g. ``verify(plan, sheet_center=(0.5, 0.1), draw_speed_mm_s=40)``.
+        With ``faults``, this is where the planner *believes* the sheet is.
+      faults: a :class:`jdraw.robot.faults.Faults` (default: none); the arm is
+        commanded for ``options`` and simulated with the real sheet and errors.
+      pass_index: the drawing pass on this sheet (new joint noise and skips).
 
     Returns:
       A :class:`Report` with ``[B]`` leading dimensions.
     """
     options = dataclasses.replace(options or RobotOptions(), **overrides)
-    a = arm(options)
+    faults = faults or F.Faults()
     paths = [trajectory.tip_path(s, options) for s in plan.strokes]
     targets, valid = trajectory.batch(paths, options.pad_steps)
+    real, sim_targets, ctrl_offset, pen_ok, log = F.apply(
+        paths, targets, options, faults, pass_index
+    )
+    a = arm(real)
     start = time.perf_counter()
     out = _run(
         a.mx,
         a.d,
         jnp.asarray(model.SEED),
-        jnp.asarray(targets),
+        jnp.asarray(sim_targets),
         jnp.asarray(valid),
-        jnp.asarray(model.sheet_params(options)),
+        jnp.asarray(ctrl_offset, jnp.float32),
+        jnp.asarray(pen_ok),
+        jnp.asarray(model.sheet_params(real)),
         jnp.asarray(a.lo),
         jnp.asarray(a.hi),
         jnp.float32(options.ik_damping),
@@ -249,4 +277,6 @@ def verify(plan: types.Plan, options: RobotOptions | None = None, **overrides) -
         tip=out["tip"],
         touch=touch,
         wall_time_s=wall,
+        faults=faults,
+        fault_log=log,
     )

@@ -1,58 +1,205 @@
-"""Characters per second of ``jdraw.plan``: exact window encoder vs full-image encoder.
+"""Characters per second of ``jdraw.plan``: the old vmap loop against the slot loop.
 
-  python bench/plan_speed.py [--checkpoint DIR] [--chars 64]
+  nice -n 10 python bench/plan_speed.py [--checkpoint DIR] [--chars 64] [--stream 512]
+  nice -n 10 python bench/plan_speed.py --rss 1000   # peak memory, 1,000 images in one call
 
-Same weights, same characters (held-out KanjiVG test split); the two
-encodings must give identical actions (checked). Prints a table.
+Same weights, same characters (held-out KanjiVG test split, no augmentation);
+batch ``b`` is ``jdraw.plan`` called on ``b`` images at a time, "stream" one
+call on all of ``--stream`` images. Checks that both loops give identical
+actions. Prints the work per character (global-model starts and local-model
+steps evaluated), the measured cost of one global sub-batch and one local
+step, and the speed those costs allow. Takes about 10 minutes on a shared
+2-core CPU.
 """
 
+from __future__ import annotations
+
 import argparse
+import resource
+import sys
 import time
 
+import jax
+import jax.numpy as jnp
 import numpy as np
+from flax import nnx
 
 import jdraw
-from jdraw import demo, kanji
+from jdraw import api, demo, kanji, planner, slots, state
 
 
-def bench(targets, batch, encoding, checkpoint):
+def chars(n: int) -> np.ndarray:
+    ks = kanji.load(progress=False)
+    idx = kanji.split_indices(ks, "test")
+    idx = np.resize(idx, n)  # cycles past the 1,000 test characters
+    return np.stack([demo.sample(ks, int(i)).target for i in idx])
+
+
+def run(targets, batch, loop, checkpoint, width, k):
+    """Plans ``targets`` ``batch`` at a time; returns chars/s, actions and the slot loop's work."""
+    kw = dict(checkpoint=checkpoint, loop=loop, batch_size=width, global_batch=k)
+    jdraw.plan(targets[:batch], **kw)  # compile
     n = (len(targets) // batch) * batch
-    chunks = [targets[i : i + batch] for i in range(0, n, batch)]
-    jdraw.plan(chunks[0], checkpoint=checkpoint, local_encoding=encoding)  # compile
     t = time.perf_counter()
-    plans = [jdraw.plan(c, checkpoint=checkpoint, local_encoding=encoding) for c in chunks]
+    plans = [jdraw.plan(targets[i : i + batch], **kw) for i in range(0, n, batch)]
     dt = time.perf_counter() - t
     actions = [a[:m] for p in plans for a, m in zip(p.actions, p.lengths)]
-    return n / dt, actions, int(sum(p.lengths.sum() for p in plans))
+    return n / dt, actions
+
+
+def work(model, targets, batch, loop, width, k, actions):
+    """Global starts, global-model calls and local steps evaluated per character."""
+    if loop == "slots":
+        limits = planner.Limits()
+        labels = np.stack([state.component_labels(t) for t in targets])
+        g = loc = calls = 0
+        for i in range(0, len(targets), batch):
+            out = api.stream_plan(
+                model, targets[i : i + batch], labels[i : i + batch], limits, "window", width, k
+            )
+            g += int(out.global_calls.sum())
+            loc += int(out.local_steps.sum())
+            calls += int(out.global_batches.sum())
+        return g / len(targets), loc / len(targets), calls / len(targets)
+    # Under vmap every image runs each stroke's body and each local step of the
+    # batch's longest (a stroke's local steps counted as its moves + 1 lift);
+    # the global model runs once per stroke on the whole batch.
+    g = loc = calls = 0
+    for i in range(0, len(actions), batch):
+        per = [_strokes(a) for a in actions[i : i + batch]]
+        s = max(len(x) for x in per)
+        g, calls = g + len(per) * s, calls + s
+        loc += len(per) * sum(max((x[j] + 1 if j < len(x) else 0) for x in per) for j in range(s))
+    return g / len(actions), loc / len(actions), calls / len(actions)
+
+
+def _strokes(a):
+    """Moves per stroke of one plan's actions ``[n, 3]``."""
+    starts = np.flatnonzero(a[:, 2] == 0)
+    ends = np.append(starts[1:], len(a))
+    return [int((a[s + 1 : e, 2] == 1).sum()) for s, e in zip(starts, ends)]
+
+
+def per_call_costs(model, targets, width, k, reps=10):
+    """Seconds for one global sub-batch of ``k`` starts and one local step of ``width`` slots."""
+    limits = planner.Limits()
+    policy = planner.model_policy()
+    graphdef, st = nnx.split(model)
+    labels = np.stack([state.component_labels(t) for t in targets[:width]])
+
+    def loaded(st, targets, labels):
+        m = nnx.merge(graphdef, st)
+        load = lambda t, lab: slots.load(policy, m, (), t, lab, 0, limits.max_steps)
+        return jax.vmap(load)(targets, labels)
+
+    def each(f):
+        def g(st, s):
+            m = nnx.merge(graphdef, st)
+            return jax.vmap(lambda s: f(policy, m, s, limits))(s)
+
+        return jax.jit(g)
+
+    def timed(f, s):
+        jax.block_until_ready(f(st, s))
+        t = time.perf_counter()
+        for _ in range(reps):
+            jax.block_until_ready(f(st, s))
+        return (time.perf_counter() - t) / reps
+
+    start, move = each(slots.start), each(slots.move)
+    fresh = jax.jit(loaded)(st, jnp.asarray(targets[:width]), jnp.asarray(labels))
+    t_glob = timed(start, jax.tree.map(lambda a: a[:k], fresh))
+    t_loc = timed(move, start(st, fresh))
+    return t_glob, t_loc
+
+
+def rss(n, checkpoint):
+    """Plans ``n`` images in one call in this process; prints peak RSS and compilations."""
+    targets = chars(n)
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    t = time.perf_counter()
+    p = jdraw.plan(targets, checkpoint=checkpoint)
+    dt = time.perf_counter() - t
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    print(
+        f"{n} images: {dt:.1f} s ({n / dt:.2f} chars/s, compile included), peak RSS "
+        f"{peak / 1024:.0f} MiB (before planning {before / 1024:.0f} MiB), "
+        f"compilations {api._TRACES['plan']}, truncated {int(p.truncated.sum())}"
+    )
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--checkpoint", default=None, help="bundle folder (default: the bundled model)")
-    ap.add_argument("--chars", type=int, default=64, help="characters per measurement")
-    ap.add_argument(
-        "--full-chars", type=int, default=8, help="characters for the slow full encoder at batch 1"
-    )
+    ap.add_argument("--chars", type=int, default=64, help="characters for batches 8 and 64")
+    ap.add_argument("--chars1", type=int, default=16, help="characters for batch 1")
+    ap.add_argument("--stream", type=int, default=512, help="images in the streamed call")
+    ap.add_argument("--width", type=int, default=64, help="slots (jdraw.plan batch_size)")
+    ap.add_argument("--global-batch", type=int, default=4, help="global sub-batch K")
+    ap.add_argument("--rss", type=int, default=0, help="only: peak RSS for this many images")
+    ap.add_argument("--skip-old-stream", action="store_true", help="old loop: skip the stream row")
     args = ap.parse_args()
-    ks = kanji.load()
-    idx = kanji.split_indices(ks, "test")[: args.chars]
-    targets = np.stack([demo.sample(ks, int(i)).target for i in idx])
-    rows = []
-    for batch in (1, 64):
-        if batch > len(targets):
-            continue
-        sub_full = targets[: max(args.full_chars, batch)] if batch == 1 else targets[:batch]
-        w_cps, w_act, steps = bench(
-            targets if batch > 1 else sub_full, batch, "window", args.checkpoint
-        )
-        f_cps, f_act, _ = bench(sub_full, batch, "full", args.checkpoint)
-        same = all(np.array_equal(a, b) for a, b in zip(w_act, f_act))
-        rows.append((batch, w_cps, f_cps, w_cps / f_cps, same))
-    head = f"{'batch':>5} | {'window chars/s':>14} | {'full chars/s':>12} | {'ratio':>6}"
-    print(head + " | identical actions")
-    print("-" * 66)
-    for b, w, f, r, same in rows:
-        print(f"{b:>5} | {w:>14.2f} | {f:>12.3f} | {r:>5.1f}x | {same}")
+    if args.rss:
+        rss(args.rss, args.checkpoint)
+        return
+    model = api.load_model(args.checkpoint)
+    targets = chars(max(args.chars, args.stream, args.chars1))
+    rows, speed = [], {}
+    for loop in ("vmap", "slots"):
+        for label, batch, n in (
+            ("1", 1, args.chars1),
+            ("8", 8, args.chars),
+            ("64", 64, args.chars),
+            (f"{args.stream} streamed", args.stream, args.stream),
+        ):
+            if loop == "vmap" and batch == args.stream:
+                if args.skip_old_stream:
+                    continue
+                batch = 64  # the old loop cannot stream: calls of 64
+            if batch > n:
+                continue
+            cps, acts = run(targets[:n], batch, loop, model, args.width, args.global_batch)
+            g, loc, calls = work(
+                model, targets[:n], batch, loop, args.width, args.global_batch, acts
+            )
+            speed[loop, label] = cps, acts
+            rows.append((loop, label, cps, g, loc, calls))
+            print(f"  {loop:>5} batch {label}: {cps:.2f} chars/s", file=sys.stderr, flush=True)
+    same = all(
+        all(np.array_equal(a, b) for a, b in zip(speed["vmap", lab][1], speed["slots", lab][1]))
+        for _, lab, *_ in rows
+        if ("vmap", lab) in speed and ("slots", lab) in speed
+    )
+    head = (
+        f"{'loop':>5} | {'batch':>12} | {'chars/s':>7} | {'global starts/char':>18} | "
+        f"{'global calls/char':>17} | {'local steps/char':>16}"
+    )
+    print(head)
+    print("-" * len(head))
+    for loop, label, cps, g, loc, calls in rows:
+        print(f"{loop:>5} | {label:>12} | {cps:>7.2f} | {g:>18.1f} | {calls:>17.2f} | {loc:>16.1f}")
+    print(f"identical actions, old loop vs slot loop: {same}")
+    if ("slots", "64") not in speed:
+        return
+    s1, s64 = speed["slots", "1"][0], speed["slots", "64"][0]
+    print(f"slot loop, batch 64 vs batch 1: {s64 / s1:.2f}x per character")
+
+    # The speed the per-call costs allow at this width.
+    w, k = args.width, args.global_batch
+    t_g, t_l = per_call_costs(model, targets, w, k)
+    t_g1, t_l1 = per_call_costs(model, targets, 1, 1)
+    g, loc = [r for r in rows if r[:2] == ("slots", "64")][0][3:5]
+    per_char = g * t_g / k + loc * t_l / w
+    print(
+        f"per call: global sub-batch of {k} {t_g * 1e3:.1f} ms ({t_g / k * 1e3:.1f} ms/start), "
+        f"of 1 {t_g1 * 1e3:.1f} ms; local step of {w} slots {t_l * 1e3:.1f} ms "
+        f"({t_l / w * 1e3:.2f} ms/slot), of 1 {t_l1 * 1e3:.2f} ms"
+    )
+    print(
+        f"limit at batch 64: {g:.2f} starts x {t_g / k * 1e3:.1f} ms + {loc:.1f} steps x "
+        f"{t_l / w * 1e3:.2f} ms = {per_char * 1e3:.0f} ms/char -> {1 / per_char:.1f} chars/s; "
+        f"measured {s64:.2f} ({s64 * per_char:.0%} of it)"
+    )
 
 
 if __name__ == "__main__":

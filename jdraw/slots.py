@@ -63,7 +63,8 @@ class Stream(NamedTuple):
     truncated: jax.Array  # [Q] bool
     global_calls: jax.Array  # [] int32, starts computed (one per stroke)
     global_batches: jax.Array  # [] int32, global sub-batches run
-    local_steps: jax.Array  # [] int32, local model evaluations
+    local_steps: jax.Array  # [] int32, moving slots' local steps
+    local_batches: jax.Array  # [] int32, local batches run (each over every slot)
     steps: jax.Array  # [] int32, loop steps
 
 
@@ -272,7 +273,8 @@ def stream(
         s = jax.lax.cond(moving.any(), lambda s: rows(moving, each(move)(s), s), lambda s: s, s)
 
         n_starts = jnp.where(due, (prio >= 0).sum(), 0)
-        stats = stats + jnp.stack([n_starts, due, moving.sum(), 1]).astype(jnp.int32)
+        work = [n_starts, due, moving.sum(), moving.any(), 1]
+        stats = stats + jnp.stack(work).astype(jnp.int32)
         return s, nxt, wait, out, stats
 
     def going(c):
@@ -286,7 +288,7 @@ def stream(
         jnp.int32(width),
         jnp.zeros(width, jnp.int32),
         out0,
-        jnp.zeros(4, jnp.int32),
+        jnp.zeros(5, jnp.int32),
     )
     s, _, _, out, stats = jax.lax.while_loop(going, step, c0)
     acts, lens, trunc = save(out, s, jnp.ones(width, bool))

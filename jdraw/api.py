@@ -227,10 +227,14 @@ def plan(
         raise ValueError(f"max_steps must be positive, got {max_steps}")
     if loop not in ("slots", "vmap"):
         raise ValueError(f"loop must be 'slots' or 'vmap', got {loop!r}")
+    if batch_size < 1 or global_batch < 1:
+        raise ValueError(
+            f"batch_size and global_batch must be positive, got {batch_size}, {global_batch}"
+        )
     model = load_model(checkpoint)
     labels = np.stack([state.component_labels(t) for t in targets])
     kind = getattr(model, "kind", "two_scale")
-    if loop == "slots" and kind == "two_scale":
+    if loop == "slots" and kind != "global_only":  # the global-only ablation keeps vmap
         out = stream_plan(
             model, targets, labels, limits, local_encoding, batch_size, global_batch, devices
         )

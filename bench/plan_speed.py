@@ -97,8 +97,12 @@ def _strokes(a):
     return [int((a[s + 1 : e, 2] == 1).sum()) for s, e in zip(starts, ends)]
 
 
-def per_call_costs(model, targets, width, k, reps=10):
-    """Seconds for one global sub-batch of ``k`` starts and one local step of ``width`` slots."""
+def per_call_costs(model, targets, width, k, reps=8):
+    """Seconds for one global sub-batch of ``k`` starts and one local step of ``width`` slots.
+
+    Each is timed as ``reps`` calls in a ``lax.fori_loop`` inside one jitted
+    call, as in the planner's loop (no per-call dispatch).
+    """
     limits = planner.Limits()
     policy = planner.model_policy()
     graphdef, st = nnx.split(model)
@@ -109,24 +113,27 @@ def per_call_costs(model, targets, width, k, reps=10):
         load = lambda t, lab: slots.load(policy, m, (), t, lab, 0, limits.max_steps)
         return jax.vmap(load)(targets, labels)
 
-    def each(f):
+    def looped(f, n):
         def g(st, s):
             m = nnx.merge(graphdef, st)
-            return jax.vmap(lambda s: f(policy, m, s, limits))(s)
+            body = lambda i, s: jax.vmap(lambda s: f(policy, m, s, limits))(s)
+            return jax.lax.fori_loop(0, n, body, s)
 
         return jax.jit(g)
 
     def timed(f, s):
-        jax.block_until_ready(f(st, s))
+        one, many = looped(f, 1), looped(f, reps + 1)
+        jax.block_until_ready((one(st, s), many(st, s)))
         t = time.perf_counter()
-        for _ in range(reps):
-            jax.block_until_ready(f(st, s))
-        return (time.perf_counter() - t) / reps
+        jax.block_until_ready(one(st, s))
+        t1 = time.perf_counter()
+        jax.block_until_ready(many(st, s))
+        return (time.perf_counter() - t1 - (t1 - t)) / reps
 
-    start, move = each(slots.start), each(slots.move)
     fresh = jax.jit(loaded)(st, jnp.asarray(targets[:width]), jnp.asarray(labels))
-    t_glob = timed(start, jax.tree.map(lambda a: a[:k], fresh))
-    t_loc = timed(move, start(st, fresh))
+    t_glob = timed(slots.start, jax.tree.map(lambda a: a[:k], fresh))
+    started = looped(slots.start, 1)(st, fresh)
+    t_loc = timed(slots.move, started)
     return t_glob, t_loc
 
 
@@ -214,6 +221,7 @@ def main():
     t_g1, t_l1 = per_call_costs(model, targets, 1, 1)
     g, loc = best["slots", "64"][2][3:]
     per_char = g * t_g / k + loc * t_l / w
+    per_char1 = g * t_g1 + loc * t_l1
     print(
         f"per call: global sub-batch of {k} {t_g * 1e3:.1f} ms ({t_g / k * 1e3:.1f} ms/start), "
         f"of 1 {t_g1 * 1e3:.1f} ms; local step of {w} slots {t_l * 1e3:.1f} ms "
@@ -223,6 +231,10 @@ def main():
         f"limit at batch 64: {g:.2f} starts x {t_g / k * 1e3:.1f} ms + {loc:.1f} steps x "
         f"{t_l / w * 1e3:.2f} ms = {per_char * 1e3:.0f} ms/char -> {1 / per_char:.1f} chars/s; "
         f"measured {s64:.2f} ({s64 * per_char:.0%} of it)"
+    )
+    print(
+        f"limit at batch 1: {per_char1 * 1e3:.0f} ms/char -> {1 / per_char1:.1f} chars/s; "
+        f"batching can gain at most {per_char1 / per_char:.2f}x per character"
     )
 
 

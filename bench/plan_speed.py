@@ -70,11 +70,11 @@ def work(actions, batch, loop, width, k):
     used = sum(len(x) for x in strokes) / n, sum(sum(x) + len(x) for x in strokes) / n
     if loop == "slots":
         sums = [sum(int(getattr(o, f).sum()) for o in _STREAMS) for f in slots.Stream._fields[3:]]
-        starts, calls, steps, local_batches, _ = sums
+        starts, calls, steps, local_rows, _ = sums
         return (
             calls * min(k, width) / n,
             calls / n,
-            local_batches * width / n,
+            local_rows / n,
             starts / n,
             steps / n,
         )

@@ -64,7 +64,7 @@ class Stream(NamedTuple):
     global_calls: jax.Array  # [] int32, starts computed (one per stroke)
     global_batches: jax.Array  # [] int32, global sub-batches run
     local_steps: jax.Array  # [] int32, moving slots' local steps
-    local_batches: jax.Array  # [] int32, local batches run (each over every slot)
+    local_rows: jax.Array  # [] int32, slots the local model ran on (moving or padding)
     steps: jax.Array  # [] int32, loop steps
 
 
@@ -218,6 +218,7 @@ def stream(
     q = targets.shape[0]
     width = max(1, min(slots, q))
     k_glob = max(1, min(global_batch, width))
+    widths = sorted({max(1, width // 8), max(1, width // 2), width})
     each = lambda f: jax.vmap(lambda s: f(policy, ctx, s, limits))
     loads = jax.vmap(lambda t, lab, i: load(policy, ctx, pstate, t, lab, i, limits.max_steps))
 
@@ -268,12 +269,33 @@ def stream(
         s = jax.lax.cond(due, starts, lambda s: s, s)
         wait = jnp.where(s.phase == NEEDS_START, wait + 1, 0)
 
-        # Local model: every moving slot moves once.
+        # Local model: every moving slot moves once, gathered into the smallest
+        # of a few fixed widths that holds them (a batch's tail runs narrow).
         moving = s.phase == MOVING
-        s = jax.lax.cond(moving.any(), lambda s: rows(moving, each(move)(s), s), lambda s: s, s)
+        n_moving = moving.sum()
+        size = jnp.searchsorted(jnp.asarray(widths), n_moving)
+
+        def moves(w):
+            def f(s):
+                if w == width:
+                    return rows(moving, each(move)(s), s)
+                _, pick = jax.lax.top_k(moving.astype(jnp.int32), w)
+                done = each(move)(jax.tree.map(lambda a: a[pick], s))
+                dst = jnp.where(moving[pick], pick, width)  # width: dropped
+                return jax.tree.map(lambda a, b: a.at[dst].set(b, mode="drop"), s, done)
+
+            return f
+
+        s = jax.lax.cond(
+            n_moving > 0,
+            lambda s: jax.lax.switch(size, [moves(w) for w in widths], s),
+            lambda s: s,
+            s,
+        )
 
         n_starts = jnp.where(due, (prio >= 0).sum(), 0)
-        work = [n_starts, due, moving.sum(), moving.any(), 1]
+        rows_run = jnp.where(n_moving > 0, jnp.asarray(widths)[size], 0)
+        work = [n_starts, due, n_moving, rows_run, 1]
         stats = stats + jnp.stack(work).astype(jnp.int32)
         return s, nxt, wait, out, stats
 

@@ -11,7 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
-from jdraw import bundle, planner, state
+from jdraw import bundle, planner, slots, state
 from jdraw.types import Plan, strokes_from_actions
 
 CANVAS = state.CANVAS
@@ -142,6 +142,71 @@ def _load_ranker(path: str):
     return ranker.load(path)
 
 
+def _bucket(n: int) -> int:
+    """Queue length for ``n`` images: the next power of two, so few shapes compile."""
+    return 1 << max(0, n - 1).bit_length()
+
+
+@functools.lru_cache(maxsize=16)
+def _streamer(graphdef, limits, local_encoding: str, width: int, global_batch: int, devices):
+    """The jitted slot planner, each device streaming its own part of the queue."""
+    policy = planner.model_policy(local_encoding)
+    mesh = jax.sharding.Mesh(np.asarray(devices), ("d",))
+    P = jax.sharding.PartitionSpec
+
+    def per_device(st, targets, labels, count):
+        model = nnx.merge(graphdef, st)
+        out = slots.stream(
+            policy, model, (), targets, labels, count[0], limits, width, global_batch
+        )
+        return out._replace(**{f: getattr(out, f)[None] for f in out._fields[3:]})
+
+    def many(st, targets, labels, counts):
+        _TRACES["plan"] += 1
+        return jax.shard_map(
+            per_device,
+            mesh=mesh,
+            in_specs=(P(), P("d"), P("d"), P("d")),
+            out_specs=P("d"),
+            check_vma=False,  # no collectives: each device runs alone
+        )(st, targets, labels, counts)
+
+    return jax.jit(many)
+
+
+def stream_plan(
+    model, targets, labels, limits, local_encoding="window", width=64, global_batch=4, devices=None
+) -> slots.Stream:
+    """The slot planner on ``targets [B, H, W]``: a :class:`slots.Stream`, one row per image.
+
+    Each device takes a contiguous part of the images, padded to a
+    power-of-two queue, and streams it through ``width`` slots.
+    """
+    devices = tuple(devices or jax.devices())
+    d = len(devices)
+    b = len(targets)
+    per = -(-b // d)
+    qd = _bucket(per)
+    tq = np.zeros((d * qd, *targets.shape[1:]), bool)
+    lq = np.zeros((d * qd, *targets.shape[1:]), np.int32)
+    counts = np.zeros(d, np.int32)
+    keep = []
+    for j in range(d):
+        part = slice(j * per, min(b, (j + 1) * per))
+        m = max(0, part.stop - part.start)
+        tq[j * qd : j * qd + m] = targets[part]
+        lq[j * qd : j * qd + m] = labels[part]
+        counts[j] = m
+        keep.extend(range(j * qd, j * qd + m))
+    graphdef, st = nnx.split(model)
+    fn = _streamer(graphdef, limits, local_encoding, width, global_batch, devices)
+    out = jax.device_get(fn(st, tq, lq, counts))
+    keep = np.asarray(keep, int)
+    return out._replace(
+        actions=out.actions[keep], length=out.length[keep], truncated=out.truncated[keep]
+    )
+
+
 def plan(
     images,
     *,
@@ -150,6 +215,10 @@ def plan(
     local_encoding: str = "window",
     order: str = "auto",
     canonicalise: bool = True,
+    batch_size: int = 64,
+    global_batch: int = 4,
+    loop: str = "slots",
+    devices=None,
 ) -> Plan:
     """Plans how to draw each image.
 
@@ -172,6 +241,13 @@ def plan(
         staircase corners, fill 1-pixel breaks). The plan then inks pixels
         within 1 pixel of the input's ink; lines already canonical, like
         KanjiVG as jdraw draws it, are left as they are.
+      batch_size: images in flight at once (per device); any number of
+        images streams through them in one compiled loop.
+      global_batch: slots that the global model starts together.
+      loop: ``"slots"`` (default; see :mod:`jdraw.slots`) or ``"vmap"`` (the
+        old loop, every image waiting for the batch's longest stroke); same
+        actions.
+      devices: the JAX devices the slot batch is spread over (default all).
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
@@ -186,11 +262,23 @@ def plan(
     limits = planner.Limits(max_steps=int(max_steps or planner.Limits.max_steps))
     if limits.max_steps < 1:
         raise ValueError(f"max_steps must be positive, got {max_steps}")
+    if loop not in ("slots", "vmap"):
+        raise ValueError(f"loop must be 'slots' or 'vmap', got {loop!r}")
+    if batch_size < 1 or global_batch < 1:
+        raise ValueError(
+            f"batch_size and global_batch must be positive, got {batch_size}, {global_batch}"
+        )
     model = load_model(checkpoint)
-    graphdef, st = nnx.split(model)
     labels = np.stack([state.component_labels(t) for t in targets])
-    fn = _planner(graphdef, limits, local_encoding, getattr(model, "kind", "two_scale"))
-    out = fn(st, jnp.asarray(targets), jnp.asarray(labels))
+    kind = getattr(model, "kind", "two_scale")
+    if loop == "slots" and kind != "global_only":  # the global-only ablation keeps vmap
+        out = stream_plan(
+            model, targets, labels, limits, local_encoding, batch_size, global_batch, devices
+        )
+    else:
+        graphdef, st = nnx.split(model)
+        fn = _planner(graphdef, limits, local_encoding, kind)
+        out = fn(st, jnp.asarray(targets), jnp.asarray(labels))
     actions = np.asarray(out.actions)
     lengths = np.asarray(out.length)
     strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]

@@ -109,10 +109,10 @@ def load(bundle_dir):
         raise BundleError(
             f"{path}: arrays do not match the model (missing {miss[:3]}, unexpected {extra[:3]})"
         )
+    from jdraw import validate
+
     for p, v in flat:
-        a = arrays[_key(p)]
-        if a.shape != v.shape:
-            raise BundleError(f"{path}: {_key(p)} has shape {a.shape}, the model needs {v.shape}")
+        a = validate.model_array(path, _key(p), arrays[_key(p)], v)
         v.set_value(a) if hasattr(v, "set_value") else setattr(v, "value", a)
     nnx.update(mdl, nnx.from_flat_state(flat))
     mdl.eval()

@@ -116,10 +116,7 @@ def _odd(n: float) -> int:
 def _median_background(gray: np.ndarray) -> np.ndarray:
     """Large-window median: the paper's (or board's) brightness under sparse ink."""
     h, w = gray.shape
-    f = min(1.0, 256.0 / max(h, w))
-    small = cv2.resize(
-        gray, (max(1, round(w * f)), max(1, round(h * f))), interpolation=cv2.INTER_AREA
-    )
+    small = cv2.resize(gray, (min(w, 256), min(h, 256)), interpolation=cv2.INTER_AREA)
     k = min(
         _odd(max(small.shape) / 6), 2 * (min(small.shape) // 2) - 1 if min(small.shape) > 2 else 3
     )
@@ -168,8 +165,9 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     Unlike a blur, the fit does not bend towards the interior at the borders.
     """
     h, w = gray.shape
-    f = min(1.0, 128.0 / max(h, w))
-    sw, sh = max(2, round(w * f)), max(2, round(h * f))
+    # Each axis shrinks on its own: a long thin strip keeps its short side, so a
+    # line along it is not averaged into the ground.
+    sw, sh = max(2, min(w, 128)), max(2, min(h, 128))
     small = cv2.resize(gray, (sw, sh), interpolation=cv2.INTER_AREA).ravel().astype(np.float64)
     ys, xs = np.mgrid[0:sh, 0:sw]
     terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, degree)

@@ -207,15 +207,16 @@ def gcode_template(name: str, template) -> str:
     try:
         parts = list(string.Formatter().parse(template))
     except ValueError as e:
-        raise InputError(f"{name} {template!r}: {e} (write {{{{ and }}}} for literal braces)")
+        raise InputError(
+            f"{name} {template!r}: {e} (write {{{{ and }}}} for literal braces)"
+        ) from None
     for _, field, spec, conv in parts:
         if field is None:
             continue
         if field not in TEMPLATE_FIELDS or spec or conv:
-            raise InputError(
-                f"{name} {template!r}: unknown field {{{field}{'!' + conv if conv else ''}"
-                f"{':' + spec if spec else ''}}}; use {', '.join('{' + f + '}' for f in TEMPLATE_FIELDS)}"
-            )
+            known = ", ".join("{" + f + "}" for f in TEMPLATE_FIELDS)
+            shown = field + ("!" + conv if conv else "") + (":" + spec if spec else "")
+            raise InputError(f"{name} {template!r}: unknown field {{{shown}}}; use {known}")
     return template
 
 

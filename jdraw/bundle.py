@@ -17,6 +17,7 @@ from flax import nnx
 FORMAT = "jdraw-bundle"
 FORMAT_VERSION = 1
 DEFAULT_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "default"
+TRAINING_CONFIG = "training_config.json"
 DEFAULT_MODEL = {"hidden": 256, "core": "lstm", "extraction": "late"}
 
 
@@ -37,10 +38,22 @@ def state_arrays(model) -> dict[str, np.ndarray]:
     }
 
 
-def write(model, model_config: dict, out_dir, provenance: dict | None = None) -> pathlib.Path:
-    """Writes ``model`` as a bundle in ``out_dir``."""
+def write(
+    model,
+    model_config: dict,
+    out_dir,
+    provenance: dict | None = None,
+    training_config: dict | None = None,
+) -> pathlib.Path:
+    """Writes ``model`` as a bundle in ``out_dir``.
+
+    ``training_config`` (the run's whole config) goes to ``training_config.json``
+    beside it, for the record; loading does not need it.
+    """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    if training_config is not None:
+        (out / TRAINING_CONFIG).write_text(json.dumps(training_config, indent=2) + "\n")
     np.savez(out / "params.npz", **state_arrays(model))
     meta = {
         "format": FORMAT,

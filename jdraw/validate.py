@@ -118,15 +118,18 @@ def canvas_images(images) -> np.ndarray:
     if x.ndim == 2:
         x = x[None]
     if x.ndim != 3 or x.shape[1:] != (CANVAS, CANVAS):
-        if x.ndim == 3 and x.shape[-1] in (3, 4) and x.shape[:2] == (CANVAS, CANVAS):
-            hint = "; convert colour to one channel, or use jdraw.plan_image"
-        elif x.ndim in (2, 3):
-            hint = "; use jdraw.plan_image for other sizes"
+        c = shape[-1]
+        if len(shape) in (3, 4) and shape[-3:-1] == (CANVAS, CANVAS):
+            hint = f"; it has {c} channels: convert to one, or use jdraw.plan_image"
+        elif len(shape) == 4 and shape[-2:] == (CANVAS, CANVAS):
+            hint = f"; channels first? it has {shape[1]} channels along axis 1: pass one, last"
+        elif len(shape) in (2, 3):
+            hint = "; use jdraw.plan_image for sizes other than 100x100"
         else:
             hint = ""
         raise InputError(
             f"images must have shape [B, 100, 100] or [100, 100] (a trailing channel axis of "
-            f"size 1 is allowed), got {shape}{hint}"
+            f"size 1 is allowed), got rank {len(shape)} shape {shape}{hint}"
         )
     if len(x) == 0:
         raise InputError(f"images is an empty batch (shape {shape}); pass at least one image")

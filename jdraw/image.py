@@ -152,8 +152,18 @@ def _masked_blur(values: np.ndarray, weights: np.ndarray, sigma: float) -> np.nd
     return cv2.resize(out, (w, h), interpolation=cv2.INTER_LINEAR) if f < 1.0 else out
 
 
-def _poly_terms(x: np.ndarray, y: np.ndarray, degree: int) -> np.ndarray:
-    return np.stack([x**i * y**j for i in range(degree + 1) for j in range(degree + 1 - i)], -1)
+def _poly_powers(degree: int, w: int, h: int) -> list[tuple[int, int]]:
+    """``(i, j)`` powers of ``x**i * y**j``: total degree ``<= degree``, and fewer
+    across a long thin image's short side, over which lighting barely changes
+    (else a cubic across 20 rows bends into a line along them)."""
+    aspect = min(w, h) / max(w, h)
+    short = min(degree, int(4 * degree * aspect))
+    dx, dy = (degree, short) if w >= h else (short, degree)
+    return [(i, j) for i in range(degree + 1) for j in range(degree + 1 - i) if i <= dx and j <= dy]
+
+
+def _poly_terms(x: np.ndarray, y: np.ndarray, powers: list[tuple[int, int]]) -> np.ndarray:
+    return np.stack([x**i * y**j for i, j in powers], -1)
 
 
 def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
@@ -170,7 +180,8 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     sw, sh = max(2, min(w, 128)), max(2, min(h, 128))
     small = cv2.resize(gray, (sw, sh), interpolation=cv2.INTER_AREA).ravel().astype(np.float64)
     ys, xs = np.mgrid[0:sh, 0:sw]
-    terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, degree)
+    powers = _poly_powers(degree, w, h)
+    terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, powers)
     sign = 1.0 if polarity == "light" else -1.0
     keep = np.ones(small.shape, bool)
     for _ in range(5):
@@ -186,11 +197,8 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     gx = ((np.arange(w) + 0.5) * sw / w - 0.5) / (sw - 1) * 2 - 1
     gy = ((np.arange(h) + 0.5) * sh / h - 0.5) / (sh - 1) * 2 - 1
     out = np.zeros((h, w))
-    k = 0
-    for i in range(degree + 1):
-        for j in range(degree + 1 - i):
-            out += coef[k] * np.outer(gy**j, gx**i)
-            k += 1
+    for c, (i, j) in zip(coef, powers):
+        out += c * np.outer(gy**j, gx**i)
     return out.astype(np.float32)
 
 

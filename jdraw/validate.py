@@ -118,7 +118,7 @@ def canvas_images(images) -> np.ndarray:
     if x.ndim == 2:
         x = x[None]
     if x.ndim != 3 or x.shape[1:] != (CANVAS, CANVAS):
-        c = shape[-1]
+        c = shape[-1] if shape else 0
         if len(shape) in (3, 4) and shape[-3:-1] == (CANVAS, CANVAS):
             hint = f"; it has {c} channels: convert to one, or use jdraw.plan_image"
         elif len(shape) == 4 and shape[-2:] == (CANVAS, CANVAS):

@@ -257,13 +257,23 @@ def _otsu(values: np.ndarray) -> float:
     return lo + (t + 0.5) / 255 * (hi - lo)
 
 
+def ink_distance(ink: np.ndarray) -> np.ndarray:
+    """Distance from each ink pixel to the ground: ``float32 [H, W]``.
+
+    Outside the frame counts as ground, so an image that is all ink has finite
+    distances (OpenCV gives a huge sentinel where no ground pixel exists).
+    """
+    pad = np.pad(ink.astype(np.uint8), 1)
+    return cv2.distanceTransform(pad, cv2.DIST_L2, 5)[1:-1, 1:-1]
+
+
 def stroke_width(ink: np.ndarray, skeleton: np.ndarray | None = None) -> float:
     """Typical stroke width in pixels: twice the median distance to the ground on the skeleton."""
     if not ink.any():
         return 1.0
     if skeleton is None:
         skeleton = morphology.skeletonize(ink)
-    dist = cv2.distanceTransform(ink.astype(np.uint8), cv2.DIST_L2, 5)
+    dist = ink_distance(ink)
     return max(1.0, 2.0 * float(np.median(dist[skeleton])) - 1.0)
 
 
@@ -494,7 +504,7 @@ def prepare(image: np.ndarray, *, polarity: str = "auto") -> Prepared:
     width = stroke_width(ink, skel)
     polylines = skeleton_polylines(skel)
     if width > 2:
-        dist = cv2.distanceTransform(ink.astype(np.uint8), cv2.DIST_L2, 5)
+        dist = ink_distance(ink)
         skel = prune_spurs(skel, dist, width)
         polylines = extend_ends(skeleton_polylines(skel), skel, dist, width)
     polylines = [simplify(p, 0.5) for p in polylines]

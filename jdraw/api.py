@@ -11,7 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
-from jdraw import bundle, planner, slots, state
+from jdraw import bundle, planner, raster, slots, state, validate
 from jdraw.types import Plan, strokes_from_actions
 
 CANVAS = state.CANVAS
@@ -27,38 +27,7 @@ def as_targets(images) -> np.ndarray:
     Raises:
       ValueError: naming the problem (rank, shape, channels, NaN/inf, dtype).
     """
-    x = np.asarray(images)
-    if x.dtype == object or not (np.issubdtype(x.dtype, np.number) or x.dtype == bool):
-        raise ValueError(f"images must be numeric or bool arrays, got dtype {x.dtype}")
-    if x.ndim == 4:
-        if x.shape[-1] != 1:
-            raise ValueError(
-                f"images have {x.shape[-1]} channels (shape {x.shape}); pass one channel, "
-                "e.g. a grayscale or binary image"
-            )
-        x = x[..., 0]
-    if x.ndim == 3 and x.shape[1:] != (CANVAS, CANVAS) and x.shape[:2] == (CANVAS, CANVAS):
-        if x.shape[2] == 1:
-            x = x[..., 0]
-        else:
-            raise ValueError(
-                f"image has {x.shape[2]} channels (shape {x.shape}); pass one channel, "
-                "e.g. a grayscale or binary image"
-            )
-    if x.ndim == 2:
-        x = x[None]
-    if x.ndim != 3:
-        raise ValueError(
-            f"images must have shape [B, 100, 100] or [100, 100], got rank {x.ndim} {x.shape}"
-        )
-    if x.shape[1:] != (CANVAS, CANVAS):
-        raise ValueError(
-            f"images must be 100x100 (got {x.shape[1]}x{x.shape[2]}); use jdraw.plan_image for "
-            "other sizes"
-        )
-    if np.issubdtype(x.dtype, np.floating) and not np.all(np.isfinite(x)):
-        raise ValueError("images contain NaN or inf")
-    return x != 0
+    return validate.canvas_images(images)
 
 
 def _default_bundle() -> pathlib.Path | None:
@@ -259,16 +228,13 @@ def plan(
     targets = as_targets(images)
     if canonicalise:
         targets = np.stack([canonical.canonicalise(t) for t in targets])
-    limits = planner.Limits(max_steps=int(max_steps or planner.Limits.max_steps))
-    if limits.max_steps < 1:
-        raise ValueError(f"max_steps must be positive, got {max_steps}")
-    if loop not in ("slots", "vmap"):
-        raise ValueError(f"loop must be 'slots' or 'vmap', got {loop!r}")
-    if batch_size < 1 or global_batch < 1:
-        raise ValueError(
-            f"batch_size and global_batch must be positive, got {batch_size}, {global_batch}"
-        )
-    model = load_model(checkpoint)
+    max_steps = validate.positive_int("max_steps", max_steps, optional=True)
+    limits = planner.Limits(max_steps=max_steps or planner.Limits.max_steps)
+    validate.choice("local_encoding", local_encoding, ("window", "full"))
+    validate.choice("loop", loop, ("slots", "vmap"))
+    batch_size = validate.positive_int("batch_size", batch_size)
+    global_batch = validate.positive_int("global_batch", global_batch)
+    model = load_model(validate.checkpoint(checkpoint))
     labels = np.stack([state.component_labels(t) for t in targets])
     kind = getattr(model, "kind", "two_scale")
     if loop == "slots" and kind != "global_only":  # the global-only ablation keeps vmap
@@ -282,9 +248,13 @@ def plan(
     actions = np.asarray(out.actions)
     lengths = np.asarray(out.length)
     strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]
-    result = Plan(
-        strokes=strokes, actions=actions, lengths=lengths, truncated=np.asarray(out.truncated)
+    # Truncated means exactly "ink the actions do not draw remains" (of the ink planned,
+    # after canonicalising): judged from the rendered actions, not the planner's
+    # `visited` (a jump marks its pixel visited before the dot is drawn).
+    truncated = np.array(
+        [(t & ~raster.render_strokes(s, t.shape)).any() for t, s in zip(targets, strokes)], bool
     )
+    result = Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=truncated)
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"

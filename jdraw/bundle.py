@@ -18,6 +18,7 @@ FORMAT = "jdraw-bundle"
 FORMAT_VERSION = 1
 DEFAULT_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "default"  # ours
 PAPER_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "paper"  # Table I, row 1
+TRAINING_CONFIG = "training_config.json"
 DEFAULT_MODEL = {"hidden": 256, "core": "lstm", "extraction": "late"}
 
 
@@ -31,10 +32,22 @@ def state_arrays(model) -> dict[str, np.ndarray]:
     return {"/".join(map(str, k)): np.asarray(v) for k, v in flat.items()}
 
 
-def write(model, model_config: dict, out_dir, provenance: dict | None = None) -> pathlib.Path:
-    """Writes ``model`` as a bundle in ``out_dir``."""
+def write(
+    model,
+    model_config: dict,
+    out_dir,
+    provenance: dict | None = None,
+    training_config: dict | None = None,
+) -> pathlib.Path:
+    """Writes ``model`` as a bundle in ``out_dir``.
+
+    ``training_config`` (the run's whole config) goes to ``training_config.json``
+    beside it, for the record; loading does not need it.
+    """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
+    if training_config is not None:
+        (out / TRAINING_CONFIG).write_text(json.dumps(training_config, indent=2) + "\n")
     np.savez(out / "params.npz", **state_arrays(model))
     meta = {
         "format": FORMAT,
@@ -102,9 +115,10 @@ def load(bundle_dir):
         raise BundleError(
             f"{path}: arrays do not match the model (missing {miss[:3]}, unexpected {extra[:3]})"
         )
+    from jdraw import validate
+
     for k, v in expected.items():
-        if arrays[k].shape != v.shape:
-            raise BundleError(f"{path}: {k} has shape {arrays[k].shape}, the model needs {v.shape}")
+        arrays[k] = validate.model_array(path, k, arrays[k], v)
     state = nnx.state(mdl)
     # Integer path entries (list indices) come back as strings; replace_by_pure_dict maps them.
     nnx.replace_by_pure_dict(

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import time
+import traceback
 
-from jdraw import formats, stats
+from jdraw import formats, stats, validate
 
 _DESCRIPTION = """\
 Plan how to draw a picture with a pen: a photo or scan of handwriting, a
@@ -28,9 +28,13 @@ examples:
   jdraw draw board.jpg --polarity light --json board.json
   jdraw draw word.png --trajectory word_arm.json --sheet-mm 120
 
-exit status: 0 on success, 1 when --trajectory finds the sheet out of the
-arm's reach, 2 for bad arguments or an unusable image (missing, unreadable,
-unsupported format, blank).
+exit status:
+  0  success
+  1  --trajectory finds the sheet out of the arm's reach (the file is written)
+  2  user error: a bad option, an unusable image (missing, unreadable,
+     unsupported, blank) or checkpoint; one line on stderr (--debug: traceback)
+  3  internal error (a bug: please report it with the --debug traceback)
+All options are checked before planning starts.
 """
 
 
@@ -116,6 +120,7 @@ def _parser() -> argparse.ArgumentParser:
         "finished by tracing its skeleton (default: 1024)",
     )
     pl.add_argument("--no-progress", action="store_true", help="no progress bar")
+    pl.add_argument("--debug", action="store_true", help="on an error, show the Python traceback")
 
     sz = d.add_argument_group("physical size (SVG and G-code)")
     sz.add_argument(
@@ -199,8 +204,34 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _fail(msg: str) -> int:
-    print(f"jdraw: error: {msg}", file=sys.stderr)
+    print(f"jdraw: error: {validate.one_line(msg)}", file=sys.stderr)
     return 2
+
+
+def _check(args) -> None:
+    """Every option of ``draw``, checked before any work (raises ``InputError``)."""
+    for opt in ("svg", "gcode", "json", "png", "gif", "trajectory"):
+        if getattr(args, opt):
+            validate.output_path(f"--{opt}", getattr(args, opt))
+    validate.positive_int("--max-steps", args.max_steps, optional=True)
+    validate.positive("--min-gap", args.min_gap)
+    validate.positive("--width-mm", args.width_mm, optional=True)
+    validate.positive("--height-mm", args.height_mm, optional=True)
+    validate.positive("--feed", args.feed, optional=True)
+    validate.positive("--travel-feed", args.travel_feed, optional=True)
+    validate.finite("--z-up", args.z_up, optional=True)
+    validate.finite("--z-down", args.z_down, optional=True)
+    for v in args.origin_mm:
+        validate.finite("--origin-mm", v)
+    for opt in ("pen_up", "pen_down"):
+        if getattr(args, opt) is not None:
+            validate.gcode_template("--" + opt.replace("_", "-"), getattr(args, opt))
+    if not 0 < args.sheet_mm <= 1000:
+        raise validate.InputError(f"--sheet-mm must be in (0, 1000], got {args.sheet_mm}")
+    if args.checkpoint is not None:
+        from jdraw import api
+
+        api.load_model(validate.checkpoint(args.checkpoint))
 
 
 def _draw(args) -> int:
@@ -208,22 +239,15 @@ def _draw(args) -> int:
     from jdraw import tiling
 
     outputs = [args.svg, args.gcode, args.json, args.png, args.gif, args.trajectory]
-    for o in outputs:
-        if o and os.path.dirname(o) and not os.path.isdir(os.path.dirname(o)):
-            return _fail(f"cannot write {o!r}: no such directory")
-    if args.max_steps is not None and args.max_steps < 1:
-        return _fail("--max-steps must be positive")
-    if args.min_gap <= 0:
-        return _fail("--min-gap must be positive")
-    if not 0 < args.sheet_mm <= 1000:
-        return _fail("--sheet-mm must be in (0, 1000]")
+    _check(args)
+    faults = None
     if args.robot:
         from jdraw.robot.faults import Faults
 
         try:
             faults = Faults.parse(args.faults)
         except ValueError as e:
-            return _fail(str(e))
+            raise validate.InputError(str(e)) from e
     t0 = time.perf_counter()
     try:
         img = jimage.load_image(args.image)
@@ -344,11 +368,28 @@ def _draw(args) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Runs the command line; returns the exit status."""
+    """Runs the command line; returns the exit status (see the help's epilog)."""
+    from jdraw import bundle, image
+
     args = _parser().parse_args(argv)
-    if args.command == "draw":
-        return _draw(args)
-    return 2
+    debug = getattr(args, "debug", False)
+    try:
+        if args.command == "draw":
+            return _draw(args)
+        return 2
+    except (validate.InputError, image.ImageError, bundle.BundleError) as e:
+        if debug:
+            traceback.print_exc()
+        return _fail(str(e))
+    except Exception as e:  # anything else is a bug
+        if debug:
+            traceback.print_exc()
+        print(
+            f"jdraw: internal error: {type(e).__name__}: {validate.one_line(e)} "
+            "(run again with --debug for the traceback)",
+            file=sys.stderr,
+        )
+        return 3
 
 
 if __name__ == "__main__":

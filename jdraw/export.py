@@ -50,10 +50,13 @@ def export(checkpoint_or_workdir, out_dir) -> pathlib.Path:
     if (src / "bundle.json").exists():
         mdl, model_cfg = bundle.load(src)
         meta = bundle.read_meta(src)
-        return bundle.write(mdl, model_cfg, out_dir, meta.get("provenance"))
+        tc = src / bundle.TRAINING_CONFIG
+        tc = json.loads(tc.read_text()) if tc.exists() else None
+        return bundle.write(mdl, model_cfg, out_dir, meta.get("provenance"), tc)
     mdl, cfg, step, progress = _latest(src)
     prov = {"workdir": str(src), "step": int(step), "config": cfg.get("name", ""), **progress}
-    return bundle.write(mdl, cfg.model.to_dict(), out_dir, prov)
+    tc = json.loads((src / "config.json").read_text())
+    return bundle.write(mdl, cfg.model.to_dict(), out_dir, prov, tc)
 
 
 def bundle_for_workdir(workdir) -> pathlib.Path:

@@ -16,6 +16,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from jdraw import validate
+
 Strokes = Sequence[np.ndarray]
 
 
@@ -138,7 +140,7 @@ class PlotterPreset:
         """The template's lines with this preset's values filled in."""
         values = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         values = {k: _fmt(v, 3) if isinstance(v, float) else v for k, v in values.items()}
-        text = template.format(**values)
+        text = validate.gcode_template("G-code template", template).format(**values)
         return [ln.strip() for ln in text.replace("\\n", "\n").splitlines() if ln.strip()]
 
 
@@ -202,6 +204,8 @@ def to_gcode(
     p = PRESETS[preset] if isinstance(preset, str) else preset
     if overrides:
         p = dataclasses.replace(p, **{k: v for k, v in overrides.items() if v is not None})
+    validate.positive("feed", p.feed)
+    validate.positive("travel_feed", p.travel_feed, optional=True)
     if width_mm is None and height_mm is None:
         width_mm = 100.0
     wm, hm = physical_size(shape, width_mm, height_mm)

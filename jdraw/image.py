@@ -116,10 +116,7 @@ def _odd(n: float) -> int:
 def _median_background(gray: np.ndarray) -> np.ndarray:
     """Large-window median: the paper's (or board's) brightness under sparse ink."""
     h, w = gray.shape
-    f = min(1.0, 256.0 / max(h, w))
-    small = cv2.resize(
-        gray, (max(1, round(w * f)), max(1, round(h * f))), interpolation=cv2.INTER_AREA
-    )
+    small = cv2.resize(gray, (min(w, 256), min(h, 256)), interpolation=cv2.INTER_AREA)
     k = min(
         _odd(max(small.shape) / 6), 2 * (min(small.shape) // 2) - 1 if min(small.shape) > 2 else 3
     )
@@ -155,8 +152,18 @@ def _masked_blur(values: np.ndarray, weights: np.ndarray, sigma: float) -> np.nd
     return cv2.resize(out, (w, h), interpolation=cv2.INTER_LINEAR) if f < 1.0 else out
 
 
-def _poly_terms(x: np.ndarray, y: np.ndarray, degree: int) -> np.ndarray:
-    return np.stack([x**i * y**j for i in range(degree + 1) for j in range(degree + 1 - i)], -1)
+def _poly_powers(degree: int, w: int, h: int) -> list[tuple[int, int]]:
+    """``(i, j)`` powers of ``x**i * y**j``: total degree ``<= degree``, and fewer
+    across a long thin image's short side, over which lighting barely changes
+    (else a cubic across 20 rows bends into a line along them)."""
+    aspect = min(w, h) / max(w, h)
+    short = min(degree, int(4 * degree * aspect))
+    dx, dy = (degree, short) if w >= h else (short, degree)
+    return [(i, j) for i in range(degree + 1) for j in range(degree + 1 - i) if i <= dx and j <= dy]
+
+
+def _poly_terms(x: np.ndarray, y: np.ndarray, powers: list[tuple[int, int]]) -> np.ndarray:
+    return np.stack([x**i * y**j for i, j in powers], -1)
 
 
 def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
@@ -168,11 +175,13 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     Unlike a blur, the fit does not bend towards the interior at the borders.
     """
     h, w = gray.shape
-    f = min(1.0, 128.0 / max(h, w))
-    sw, sh = max(2, round(w * f)), max(2, round(h * f))
+    # Each axis shrinks on its own: a long thin strip keeps its short side, so a
+    # line along it is not averaged into the ground.
+    sw, sh = max(2, min(w, 128)), max(2, min(h, 128))
     small = cv2.resize(gray, (sw, sh), interpolation=cv2.INTER_AREA).ravel().astype(np.float64)
     ys, xs = np.mgrid[0:sh, 0:sw]
-    terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, degree)
+    powers = _poly_powers(degree, w, h)
+    terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, powers)
     sign = 1.0 if polarity == "light" else -1.0
     keep = np.ones(small.shape, bool)
     for _ in range(5):
@@ -188,11 +197,8 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     gx = ((np.arange(w) + 0.5) * sw / w - 0.5) / (sw - 1) * 2 - 1
     gy = ((np.arange(h) + 0.5) * sh / h - 0.5) / (sh - 1) * 2 - 1
     out = np.zeros((h, w))
-    k = 0
-    for i in range(degree + 1):
-        for j in range(degree + 1 - i):
-            out += coef[k] * np.outer(gy**j, gx**i)
-            k += 1
+    for c, (i, j) in zip(coef, powers):
+        out += c * np.outer(gy**j, gx**i)
     return out.astype(np.float32)
 
 
@@ -242,13 +248,23 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
     return contrast > base + 0.5 * (level - base), polarity
 
 
+def ink_distance(ink: np.ndarray) -> np.ndarray:
+    """Distance from each ink pixel to the ground: ``float32 [H, W]``.
+
+    Outside the frame counts as ground, so an image that is all ink has finite
+    distances (OpenCV gives a huge sentinel where no ground pixel exists).
+    """
+    pad = np.pad(ink.astype(np.uint8), 1)
+    return cv2.distanceTransform(pad, cv2.DIST_L2, 5)[1:-1, 1:-1]
+
+
 def stroke_width(ink: np.ndarray, skeleton: np.ndarray | None = None) -> float:
     """Typical stroke width in pixels: twice the median distance to the ground on the skeleton."""
     if not ink.any():
         return 1.0
     if skeleton is None:
         skeleton = morphology.skeletonize(ink)
-    dist = cv2.distanceTransform(ink.astype(np.uint8), cv2.DIST_L2, 5)
+    dist = ink_distance(ink)
     return max(1.0, 2.0 * float(np.median(dist[skeleton])) - 1.0)
 
 
@@ -464,7 +480,7 @@ def prepare(image: np.ndarray, *, polarity: str = "auto") -> Prepared:
     width = stroke_width(ink, skel)
     polylines = skeleton_polylines(skel)
     if width > 2:
-        dist = cv2.distanceTransform(ink.astype(np.uint8), cv2.DIST_L2, 5)
+        dist = ink_distance(ink)
         skel = prune_spurs(skel, dist, width)
         polylines = extend_ends(skeleton_polylines(skel), skel, dist, width)
     polylines = [simplify(p, 0.5) for p in polylines]

@@ -498,14 +498,25 @@ def plan_image(
       progress: show a progress bar (on a terminal) when there are several batches.
 
     Raises:
-      jdraw.image.ImageError: bad shape; jdraw.image.BlankImageError: no ink.
+      jdraw.image.ImageError: unreadable or blank image; jdraw.validate.InputError
+        (both ``ValueError``): any other bad argument, named.
     """
     from scipy.spatial import cKDTree
     from tqdm.auto import tqdm
 
-    planner = planner or _default_planner()
+    from jdraw import validate
+
+    if planner is None:
+        planner = _default_planner()
+        checkpoint = validate.checkpoint(checkpoint)
+    max_steps = validate.positive_int("max_steps", max_steps, optional=True)
+    validate.choice("polarity", polarity, ("auto", "dark", "light"))
+    min_gap = validate.positive("min_gap", min_gap)
+    batch_size = validate.positive_int("batch_size", batch_size)
+    simplify_tol = validate.positive("simplify_tol", simplify_tol, zero=True)
     if isinstance(image, str | os.PathLike):
         image = im.load_image(image)
+    image = validate.any_image(image)
     prep = im.prepare(image, polarity=polarity)
     scale, tiles, regions = layout(prep, min_gap)
     single = choose_scale(prep, min_gap)[1]

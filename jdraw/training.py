@@ -283,6 +283,28 @@ def score(demos, plan) -> dict:
 # The loop.
 
 
+def _drop_records_after(log_path: pathlib.Path, step: int) -> None:
+    """Rewrites ``metrics.jsonl`` without records past ``step`` (the restored one).
+
+    A run killed after its last checkpoint logged steps it redoes on resume;
+    without this they would appear twice. A half-written last line goes too.
+    """
+    if not log_path.exists():
+        return
+    kept = []
+    for line in log_path.read_text().splitlines():
+        try:
+            rec = json.loads(line)
+        except json.JSONDecodeError:
+            continue
+        # The final validation is logged again whenever a finished run is rerun.
+        if isinstance(rec, dict) and int(rec.get("step", 0)) <= step and "final_val" not in rec:
+            kept.append(line)
+    tmp = log_path.with_suffix(".jsonl.tmp")
+    tmp.write_text("".join(x + "\n" for x in kept))
+    tmp.replace(log_path)
+
+
 def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None) -> dict:
     """Trains (or resumes) the run in ``workdir``; returns the final logs.
 
@@ -322,6 +344,7 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
     total = int(cfg.train.num_steps)
     end = total if stop_after is None else min(total, start + int(stop_after))
     log_path = workdir / "metrics.jsonl"
+    _drop_records_after(log_path, start)
 
     interrupted = {"flag": False}
 

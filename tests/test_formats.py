@@ -99,7 +99,7 @@ def test_gcode_feeds_and_templates_override():
     )
     assert "F2500" in code and "G1 X" in code and "F6000" in code
     assert code.count("M3 S40") == len(STROKES) and code.count("G4 P0.3") == len(STROKES)
-    with pytest.raises(KeyError):
+    with pytest.raises(ValueError, match="unknown field"):
         formats.to_gcode(STROKES, SHAPE, pen_up="G0 Z{nope}")
 
 

@@ -111,3 +111,76 @@ def test_two_devices_step_equals_one_device():
         [sys.executable, "-c", script], cwd=ROOT, env=env, capture_output=True, text=True
     )
     assert r.returncode == 0, r.stdout + r.stderr[-3000:]
+
+
+_KILLER = textwrap.dedent(
+    """
+    import os, signal, sys
+    from configs import tiny
+    from jdraw import training
+
+    mode, n, workdir = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    cfg = tiny.get_config()
+    cfg.train.update(num_steps=16, checkpoint_every=5, log_every=1)
+    if mode == "step":  # SIGKILL as the n-th step of this process starts
+        make = training.make_step
+
+        def make_step(*a, **k):
+            step, calls = make(*a, **k), [0]
+
+            def killing_step(*b):
+                calls[0] += 1
+                if calls[0] == n:
+                    os.kill(os.getpid(), signal.SIGKILL)
+                return step(*b)
+
+            return killing_step
+
+        training.make_step = make_step
+    else:  # SIGKILL while the checkpoint of step n is being written (Orbax saves async)
+        save = training.save
+
+        def killing_save(mgr, step, *a):
+            save(mgr, step, *a)
+            if step == n:
+                os.kill(os.getpid(), signal.SIGKILL)
+
+        training.save = killing_save
+    training.train(cfg, workdir, progress=False)
+    """
+)
+
+
+def test_crash_recovery_logs_each_step_once_and_matches(straight_run, tmp_path):
+    """kill -9 at a step and during a checkpoint save; the resumed run equals a straight one."""
+    env = dict(os.environ, JAX_PLATFORMS="cpu")
+    for mode, n in (("step", 13), ("save", 15)):
+        r = subprocess.run(
+            [sys.executable, "-c", _KILLER, mode, str(n), str(tmp_path)],
+            cwd=ROOT,
+            env=env,
+            capture_output=True,
+            text=True,
+        )
+        assert r.returncode == -9, r.stderr[-3000:]
+    logged = [json.loads(x)["step"] for x in (tmp_path / "metrics.jsonl").read_text().splitlines()]
+    assert logged == list(range(1, 16))  # killed after logging 15, before its save finished
+    cfg = _cfg(16)
+    cfg.train.checkpoint_every = 5
+    r = training.train(cfg, tmp_path, progress=False)
+    assert r["done"]
+    recs = [json.loads(x) for x in (tmp_path / "metrics.jsonl").read_text().splitlines()]
+    assert [x["step"] for x in recs if "loss" in x] == list(range(1, 17))
+    a, b = _final_arrays(straight_run), _final_arrays(tmp_path)
+    for k in a:
+        np.testing.assert_allclose(a[k], b[k], rtol=0, atol=1e-6, err_msg=k)
+
+
+def test_export_keeps_the_training_config(straight_run, tmp_path):
+    import jdraw
+
+    out = jdraw.export(straight_run, tmp_path / "b")
+    want = json.loads((straight_run / "config.json").read_text())
+    assert json.loads((out / "training_config.json").read_text()) == want
+    again = jdraw.export(out, tmp_path / "c")  # copying a bundle keeps it too
+    assert json.loads((again / "training_config.json").read_text()) == want

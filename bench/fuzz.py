@@ -23,6 +23,7 @@ import cv2
 import numpy as np
 
 import jdraw
+from jdraw import canonical
 from jdraw.types import render
 
 KINDS = ("noise", "pixels", "border", "checker", "lines", "blank")
@@ -134,7 +135,8 @@ def main() -> None:
             signal.alarm(0)
             done += b
         drawn = render(p)
-        for t, d, tr in zip(targets, drawn, p.truncated):
+        # jdraw.plan draws the input's canonical lines (jdraw.canonical): judge against those.
+        for t, d, tr in zip(map(canonical.canonicalise, targets), drawn, p.truncated):
             left = bool((t & ~d).any())
             if (d & ~t).any():
                 counts["valid: stroke off ink (BAD)"] += 1

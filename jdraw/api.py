@@ -258,7 +258,7 @@ def plan(
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"
-    return ranker.reorder(result, order, rk)
+    return ranker.reorder(result, order, rk, max_rows=limits.max_steps)
 
 
 @functools.lru_cache(maxsize=4)

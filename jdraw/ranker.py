@@ -276,13 +276,32 @@ def _pad(x: np.ndarray, rows: int) -> np.ndarray:
     return out
 
 
+def reverse(points) -> np.ndarray:
+    """A stroke drawn backwards, inking exactly the same pixels.
+
+    A local move's skipped pixel follows the line rule from the move's start,
+    so a knight move (|d| = (2, 1)) reversed would skip another pixel; there
+    the original skipped pixel becomes a point of its own. Other moves reverse
+    as they are.
+    """
+    p = np.rint(np.asarray(points, float)).astype(np.int64).reshape(-1, 2)
+    d = np.diff(p, axis=0)
+    if len(d) and np.abs(d).max() > 2:
+        return _pixels(p)[::-1].astype(np.float64)
+    out = [p[-1]]
+    for k in range(len(p) - 1, 0, -1):
+        a, b = p[k - 1], p[k]  # drawn a -> b; now b -> a
+        fwd = a + np.sign(b - a) * (np.abs(b - a) // 2)
+        back = b + np.sign(a - b) * (np.abs(a - b) // 2)
+        if np.any(fwd != back):
+            out.append(fwd)
+        out.append(a)
+    return np.asarray(out, np.float64)
+
+
 def apply_order(strokes, order, flip) -> list[np.ndarray]:
-    """Strokes reordered, flipped ones as their pixel path walked backwards."""
-    out = []
-    for k in order:
-        s = np.asarray(strokes[k], np.float64)
-        out.append(_pixels(s)[::-1].astype(np.float64) if flip[k] else s)
-    return out
+    """Strokes reordered, flipped ones drawn backwards (:func:`reverse`)."""
+    return [reverse(strokes[k]) if flip[k] else np.asarray(strokes[k], np.float64) for k in order]
 
 
 def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:
@@ -426,13 +445,16 @@ def load(bundle_dir) -> Ranker | None:
 ORDERS = ("model", "ranker", "xy")
 
 
-def reorder(plan, method: str, ranker: Ranker | None = None):
+def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | None = None):
     """A :class:`jdraw.Plan` with each image's strokes reordered (and maybe flipped).
 
     Args:
       method: ``"model"`` (as traced: returned unchanged), ``"ranker"`` (the
         learned order and directions; needs ``ranker``) or ``"xy"`` (the
         reference rule: sort by the start's x + y).
+      max_rows: where flipping an image's strokes would need more action rows
+        than this (a reversed knight move takes two rows), its strokes are
+        reordered but not flipped, so a plan keeps within its step bound.
     """
     from jdraw.types import Plan
 
@@ -449,7 +471,10 @@ def reorder(plan, method: str, ranker: Ranker | None = None):
             strokes.append([s[k] for k in order])
         else:
             order, flip = order_strokes(ranker, s)
-            strokes.append(apply_order(s, order, flip))
+            out = apply_order(s, order, flip)
+            if max_rows is not None and len(actions_from_strokes(out)) > max_rows:
+                out = apply_order(s, order, [False] * len(s))
+            strokes.append(out)
     rows = [actions_from_strokes(s) for s in strokes]
     T = max([plan.actions.shape[1], *(len(r) for r in rows)])
     actions = np.zeros((len(rows), T, 3), np.int32)

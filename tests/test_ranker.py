@@ -80,3 +80,22 @@ def test_plan_order_option_validated():
 
     with pytest.raises(ValueError, match="order"):
         jdraw.plan(np.zeros((100, 100)), order="alphabetical")
+
+
+def test_reverse_inks_the_same_pixels_with_few_extra_rows(rng):
+    moves = np.array([[dx, dy] for dx in range(-2, 3) for dy in range(-2, 3) if dx or dy])
+    for _ in range(100):
+        p = np.cumsum(np.vstack([[50, 50], moves[rng.integers(len(moves), size=15)]]), 0)
+        r = ranker.reverse(p)
+        same = raster.render_strokes([p], (200, 200)) == raster.render_strokes([r], (200, 200))
+        assert same.all() and (r[0] == p[-1]).all() and (r[-1] == p[0]).all()
+        knights = np.sum(np.sort(np.abs(np.diff(p, axis=0)), 1) == [1, 2], 1) == 2
+        assert len(r) <= len(p) + knights.sum()
+
+
+def test_flipping_keeps_a_plan_within_its_step_bound(rng):
+    plan = _plan_of([_bars(rng, 4)])
+    model = ranker.Ranker(rngs=nnx.Rngs(0))
+    bound = int(plan.lengths[0])
+    out = ranker.reorder(plan, "ranker", model, max_rows=bound)
+    assert out.lengths[0] <= bound

@@ -293,7 +293,7 @@ def reverse(points) -> np.ndarray:
         a, b = p[k - 1], p[k]  # drawn a -> b; now b -> a
         fwd = a + np.sign(b - a) * (np.abs(b - a) // 2)
         back = b + np.sign(a - b) * (np.abs(a - b) // 2)
-        if np.any(fwd != back):
+        if np.abs(b - a).max() == 2 and np.any(fwd != back):
             out.append(fwd)
         out.append(a)
     return np.asarray(out, np.float64)

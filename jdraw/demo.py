@@ -75,15 +75,9 @@ class Demo:
 
     def actions(self, start=(0, 0)) -> np.ndarray:
         """``int32 [T, 3]`` (dx, dy, touch) as :class:`jdraw.Plan` stores them."""
-        rows = []
-        pos = np.asarray(start, np.int64)
-        for s in self.strokes:
-            rows.append([*(s[0] - pos), 0])
-            if len(s) == 1:
-                rows.append([0, 0, 1])
-            rows.extend([*d, 1] for d in np.diff(s, axis=0))
-            pos = s[-1]
-        return np.asarray(rows, np.int32).reshape(-1, 3)
+        from jdraw.types import actions_from_strokes
+
+        return actions_from_strokes(self.strokes, start)
 
     def stroke_images(self) -> np.ndarray:
         """``bool [S, 100, 100]``, one image per stroke."""

@@ -30,6 +30,7 @@ import optax
 from flax import nnx
 
 from jdraw import raster
+from jdraw.types import actions_from_strokes
 
 STROKE_FEATURES = 20
 PAIR_FEATURES = 3 * STROKE_FEATURES + 9
@@ -302,20 +303,6 @@ def reverse(points) -> np.ndarray:
 def apply_order(strokes, order, flip) -> list[np.ndarray]:
     """Strokes reordered, flipped ones drawn backwards (:func:`reverse`)."""
     return [reverse(strokes[k]) if flip[k] else np.asarray(strokes[k], np.float64) for k in order]
-
-
-def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:
-    """``int32 [T, 3]`` (dx, dy, touch) drawing ``strokes`` in order, as the planner writes them."""
-    rows = []
-    pos = np.asarray(start, np.int64)
-    for s in strokes:
-        p = np.rint(np.asarray(s, float)).astype(np.int64)
-        rows.append([*(p[0] - pos), 0])
-        if len(p) == 1:
-            rows.append([0, 0, 1])
-        rows.extend([*d, 1] for d in np.diff(p, axis=0))
-        pos = p[-1]
-    return np.asarray(rows, np.int32).reshape(-1, 3)
 
 
 # ----------------------------------------------------------------------------

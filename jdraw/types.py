@@ -59,6 +59,24 @@ def strokes_from_actions(actions: np.ndarray, length: int, start=(0, 0)) -> list
     return strokes
 
 
+def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:
+    """``int32 [T, 3]`` (dx, dy, touch) drawing ``strokes`` in order, as :class:`Plan` has them.
+
+    A pen-up jump to each stroke's start, then its moves; a one-point stroke is a dot.
+    The inverse of :func:`strokes_from_actions`.
+    """
+    rows = []
+    pos = np.asarray(start, np.int64)
+    for s in strokes:
+        p = np.rint(np.asarray(s, float)).astype(np.int64)
+        rows.append([*(p[0] - pos), 0])
+        if len(p) == 1:
+            rows.append([0, 0, 1])
+        rows.extend([*d, 1] for d in np.diff(p, axis=0))
+        pos = p[-1]
+    return np.asarray(rows, np.int32).reshape(-1, 3)
+
+
 def render(plan: Plan, shape: tuple[int, int] = (raster.CANVAS, raster.CANVAS)) -> np.ndarray:
     """Draws each image's strokes: ``bool [B, H, W]``."""
     return (

@@ -81,6 +81,22 @@ def read_meta(bundle_dir) -> dict:
     return meta
 
 
+def _checked_array(where, key: str, array: np.ndarray, like) -> np.ndarray:
+    """A bundle's array ``key`` checked against the model variable ``like``.
+
+    Raises:
+      jdraw.bundle.BundleError: wrong shape or dtype, or NaN/inf values.
+    """
+    want_dtype = np.dtype(like.dtype)
+    if array.shape != tuple(like.shape):
+        raise BundleError(f"{where}: {key} has shape {array.shape}, the model needs {like.shape}")
+    if array.dtype != want_dtype:
+        raise BundleError(f"{where}: {key} has dtype {array.dtype}, the model needs {want_dtype}")
+    if np.issubdtype(array.dtype, np.floating) and not np.all(np.isfinite(array)):
+        raise BundleError(f"{where}: {key} contains NaN or inf; the weights are corrupt")
+    return array
+
+
 def load(bundle_dir):
     """Builds the model a bundle describes and fills in its arrays.
 
@@ -115,10 +131,8 @@ def load(bundle_dir):
         raise BundleError(
             f"{path}: arrays do not match the model (missing {miss[:3]}, unexpected {extra[:3]})"
         )
-    from jdraw import validate
-
     for k, v in expected.items():
-        arrays[k] = validate.model_array(path, k, arrays[k], v)
+        arrays[k] = _checked_array(path, k, arrays[k], v)
     state = nnx.state(mdl)
     # Integer path entries (list indices) come back as strings; replace_by_pure_dict maps them.
     nnx.replace_by_pure_dict(

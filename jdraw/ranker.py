@@ -24,9 +24,7 @@ import json
 import pathlib
 
 import jax
-import jax.numpy as jnp
 import numpy as np
-import optax
 from flax import nnx
 
 from jdraw import raster
@@ -173,6 +171,26 @@ def tokens(strokes) -> Tokens:
     return Tokens(paths, feats, rfeats, _relations(paths))
 
 
+def flipped(tk: Tokens, flip) -> Tokens:
+    """The tokens of the same strokes with ``flip[i]`` ones drawn backwards.
+
+    Equals :func:`tokens` of the reversed paths without recomputing it: a
+    stroke's features and its reversed features trade places, and its
+    "starts on" / "ends on" relations swap; the rest does not depend on
+    direction.
+    """
+    f = np.asarray(flip, bool)
+    rel = tk.rel.copy()
+    rel[f, :, 1], rel[f, :, 2] = tk.rel[f, :, 2], tk.rel[f, :, 1]
+    rel[:, f, 3], rel[:, f, 4] = tk.rel[:, f, 4], tk.rel[:, f, 3]
+    return Tokens(
+        [p[::-1] if fl else p for p, fl in zip(tk.paths, f)],
+        np.where(f[:, None], tk.rfeats, tk.feats),
+        np.where(f[:, None], tk.feats, tk.rfeats),
+        rel,
+    )
+
+
 def pair_inputs(feats: np.ndarray, rel: np.ndarray, i, j) -> np.ndarray:
     """``float32 [K, PAIR_FEATURES]`` for index arrays ``i``, ``j`` of stroke pairs."""
     a, b = feats[i], feats[j]
@@ -211,9 +229,13 @@ class Ranker(nnx.Module):
 
 
 @jax.jit
-def _scores(graphdef, st, x_ab, x_ba, f, rf):
-    m = nnx.merge(graphdef, st)
-    return m.pair(x_ab, x_ba), m.heading(f, rf)
+def _headings(graphdef, st, f, rf):
+    return nnx.merge(graphdef, st).heading(f, rf)
+
+
+@jax.jit
+def _pair_net(graphdef, st, x):
+    return nnx.merge(graphdef, st).pair_net(x)
 
 
 def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
@@ -228,32 +250,16 @@ def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
         return [], []
     tk = tokens(strokes)
     g, st = nnx.split(ranker)
-    # Bucket the pair count so a new stroke count seldom recompiles.
+    # Bucket the stroke count so a new count seldom recompiles.
     size = 1 << max(1, int(np.ceil(np.log2(max(n, 2)))))
-    _, h = _scores(
-        g,
-        st,
-        np.zeros((1, PAIR_FEATURES), np.float32),
-        np.zeros((1, PAIR_FEATURES), np.float32),
-        _pad(tk.feats, size),
-        _pad(tk.rfeats, size),
-    )
+    h = _headings(g, st, _pad(tk.feats, size), _pad(tk.rfeats, size))
     flip = [bool(v < 0) for v in np.asarray(h)[:n]]
-    paths = [p[::-1] if fl else p for p, fl in zip(tk.paths, flip)]
-    tk = tokens(paths)
+    tk = flipped(tk, flip)
     i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-    i, j = i.ravel(), j.ravel()
-    x_ab = pair_inputs(tk.feats, tk.rel, i, j)
-    x_ba = pair_inputs(tk.feats, tk.rel, j, i)
-    logit, _ = _scores(
-        g,
-        st,
-        _pad(x_ab, size * size),
-        _pad(x_ba, size * size),
-        np.zeros((1, STROKE_FEATURES), np.float32),
-        np.zeros((1, STROKE_FEATURES), np.float32),
-    )
-    logit = np.array(logit)[: n * n].reshape(n, n)
+    net = np.asarray(
+        _pair_net(g, st, _pad(pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()), size * size))
+    )[: n * n].reshape(n, n)
+    logit = net - net.T  # Ranker.pair: the score of (a, b) minus that of (b, a)
     np.fill_diagonal(logit, 0.0)
     prob = 1.0 / (1.0 + np.exp(-logit))
     np.fill_diagonal(prob, 0.0)
@@ -303,94 +309,6 @@ def reverse(points) -> np.ndarray:
 def apply_order(strokes, order, flip) -> list[np.ndarray]:
     """Strokes reordered, flipped ones drawn backwards (:func:`reverse`)."""
     return [reverse(strokes[k]) if flip[k] else np.asarray(strokes[k], np.float64) for k in order]
-
-
-# ----------------------------------------------------------------------------
-# Training data and training.
-
-
-def examples(drawn_strokes, ref_images, ref_points, iou: float = 0.5):
-    """Labels the tracer's strokes of one character with the reference's order.
-
-    Each drawn stroke takes the index of the reference stroke it overlaps
-    most (IoU at least ``iou``; others are left out). Pairs of strokes that
-    match different reference strokes become order examples; each matched
-    stroke becomes a heading example (its start nearer the reference start).
-
-    Returns:
-      ``(pairs [P, PAIR_FEATURES] a-before-b inputs, their swapped inputs,
-      heading feats [H, F], reversed feats [H, F], heading labels [H])``.
-    """
-    if not drawn_strokes:
-        return None
-    tk = tokens(drawn_strokes)
-    imgs = np.zeros((len(tk.paths), *ref_images.shape[1:]), bool)
-    for k, p in enumerate(tk.paths):
-        imgs[k, p[:, 1], p[:, 0]] = True
-    d = imgs.reshape(len(imgs), -1).astype(np.float64)
-    t = ref_images.reshape(len(ref_images), -1).astype(np.float64)
-    inter = d @ t.T
-    union = d.sum(1)[:, None] + t.sum(1)[None] - inter
-    m = np.where(union > 0, inter / np.maximum(union, 1), 0.0)
-    best, ok = m.argmax(1), m.max(1) >= iou
-    idx = np.flatnonzero(ok)
-    first, second = [], []
-    for a in idx:
-        for b in idx:
-            if best[a] < best[b]:
-                first.append(a)
-                second.append(b)
-    first, second = np.asarray(first, int), np.asarray(second, int)
-    x_ab = pair_inputs(tk.feats, tk.rel, first, second)
-    x_ba = pair_inputs(tk.feats, tk.rel, second, first)
-    lab = []
-    for a in idx:
-        rp = np.asarray(ref_points[best[a]], float)
-        s = tk.paths[a][0]
-        lab.append(np.linalg.norm(s - rp[0]) <= np.linalg.norm(s - rp[-1]))
-    return x_ab, x_ba, tk.feats[idx], tk.rfeats[idx], np.asarray(lab, np.float32)
-
-
-def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3, seed: int = 0):
-    """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs."""
-    x_ab, x_ba, f, rf, lab = data
-    model = Ranker(rngs=nnx.Rngs(seed))
-    tx = optax.adam(lr)
-    graphdef, params = nnx.split(model, nnx.Param)
-    opt = tx.init(params)
-
-    def loss_fn(params, xa, xb, hf, hr, hl):
-        m = nnx.merge(graphdef, params)
-        po = m.pair(xa, xb)  # label: a before b, always 1 here (pairs come ordered)
-        lo = jnp.mean(optax.sigmoid_binary_cross_entropy(po, jnp.ones_like(po)))
-        ho = m.heading(hf, hr)
-        lh = jnp.mean(optax.sigmoid_binary_cross_entropy(ho, hl))
-        return lo + lh, (jnp.mean(po > 0), jnp.mean((ho > 0) == (hl > 0.5)))
-
-    @jax.jit
-    def step(params, opt, xa, xb, hf, hr, hl):
-        (loss, accs), g = jax.value_and_grad(loss_fn, has_aux=True)(params, xa, xb, hf, hr, hl)
-        upd, opt = tx.update(g, opt, params)
-        return optax.apply_updates(params, upd), opt, loss, accs
-
-    rng = np.random.default_rng(seed)
-    logs = []
-    for s in range(steps):
-        pi = rng.integers(len(x_ab), size=batch)
-        hi = rng.integers(len(f), size=batch)
-        # Show each pair in both orders: the net learns an antisymmetric score.
-        params, opt, loss, accs = step(params, opt, x_ab[pi], x_ba[pi], f[hi], rf[hi], lab[hi])
-        if s % 500 == 0 or s == steps - 1:
-            logs.append(
-                {
-                    "step": s,
-                    "loss": float(loss),
-                    "pair_acc": float(accs[0]),
-                    "heading_acc": float(accs[1]),
-                }
-            )
-    nnx.update(model, params)
-    return model, logs
 
 
 def save(ranker: Ranker, out_dir, provenance: dict | None = None) -> pathlib.Path:

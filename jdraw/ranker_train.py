@@ -13,9 +13,97 @@ import json
 import pathlib
 import time
 
+import jax
+import jax.numpy as jnp
 import numpy as np
+import optax
+from flax import nnx
 
 from jdraw import demo, kanji, ranker
+
+
+def examples(drawn_strokes, ref_images, ref_points, iou: float = 0.5):
+    """Labels the tracer's strokes of one character with the reference's order.
+
+    Each drawn stroke takes the index of the reference stroke it overlaps
+    most (IoU at least ``iou``; others are left out). Pairs of strokes that
+    match different reference strokes become order examples; each matched
+    stroke becomes a heading example (its start nearer the reference start).
+
+    Returns:
+      ``(pairs [P, PAIR_FEATURES] a-before-b inputs, their swapped inputs,
+      heading feats [H, F], reversed feats [H, F], heading labels [H])``.
+    """
+    if not drawn_strokes:
+        return None
+    tk = ranker.tokens(drawn_strokes)
+    imgs = np.zeros((len(tk.paths), *ref_images.shape[1:]), bool)
+    for k, p in enumerate(tk.paths):
+        imgs[k, p[:, 1], p[:, 0]] = True
+    d = imgs.reshape(len(imgs), -1).astype(np.float64)
+    t = ref_images.reshape(len(ref_images), -1).astype(np.float64)
+    inter = d @ t.T
+    union = d.sum(1)[:, None] + t.sum(1)[None] - inter
+    m = np.where(union > 0, inter / np.maximum(union, 1), 0.0)
+    best, ok = m.argmax(1), m.max(1) >= iou
+    idx = np.flatnonzero(ok)
+    first, second = [], []
+    for a in idx:
+        for b in idx:
+            if best[a] < best[b]:
+                first.append(a)
+                second.append(b)
+    first, second = np.asarray(first, int), np.asarray(second, int)
+    x_ab = ranker.pair_inputs(tk.feats, tk.rel, first, second)
+    x_ba = ranker.pair_inputs(tk.feats, tk.rel, second, first)
+    lab = []
+    for a in idx:
+        rp = np.asarray(ref_points[best[a]], float)
+        s = tk.paths[a][0]
+        lab.append(np.linalg.norm(s - rp[0]) <= np.linalg.norm(s - rp[-1]))
+    return x_ab, x_ba, tk.feats[idx], tk.rfeats[idx], np.asarray(lab, np.float32)
+
+
+def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3, seed: int = 0):
+    """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs."""
+    x_ab, x_ba, f, rf, lab = data
+    model = ranker.Ranker(rngs=nnx.Rngs(seed))
+    tx = optax.adam(lr)
+    graphdef, params = nnx.split(model, nnx.Param)
+    opt = tx.init(params)
+
+    def loss_fn(params, xa, xb, hf, hr, hl):
+        m = nnx.merge(graphdef, params)
+        po = m.pair(xa, xb)  # label: a before b, always 1 here (pairs come ordered)
+        lo = jnp.mean(optax.sigmoid_binary_cross_entropy(po, jnp.ones_like(po)))
+        ho = m.heading(hf, hr)
+        lh = jnp.mean(optax.sigmoid_binary_cross_entropy(ho, hl))
+        return lo + lh, (jnp.mean(po > 0), jnp.mean((ho > 0) == (hl > 0.5)))
+
+    @jax.jit
+    def step(params, opt, xa, xb, hf, hr, hl):
+        (loss, accs), g = jax.value_and_grad(loss_fn, has_aux=True)(params, xa, xb, hf, hr, hl)
+        upd, opt = tx.update(g, opt, params)
+        return optax.apply_updates(params, upd), opt, loss, accs
+
+    rng = np.random.default_rng(seed)
+    logs = []
+    for s in range(steps):
+        pi = rng.integers(len(x_ab), size=batch)
+        hi = rng.integers(len(f), size=batch)
+        # Show each pair in both orders: the net learns an antisymmetric score.
+        params, opt, loss, accs = step(params, opt, x_ab[pi], x_ba[pi], f[hi], rf[hi], lab[hi])
+        if s % 500 == 0 or s == steps - 1:
+            logs.append(
+                {
+                    "step": s,
+                    "loss": float(loss),
+                    "pair_acc": float(accs[0]),
+                    "heading_acc": float(accs[1]),
+                }
+            )
+    nnx.update(model, params)
+    return model, logs
 
 
 def _chunk_path(workdir: pathlib.Path, kind: str, k: int) -> pathlib.Path:
@@ -59,8 +147,7 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
         else:
             drawn = [d.strokes for d in demos]
         parts = [
-            ranker.examples(s, ranker.stroke_masks(d.strokes), d.strokes)
-            for d, s in zip(demos, drawn)
+            examples(s, ranker.stroke_masks(d.strokes), d.strokes) for d, s in zip(demos, drawn)
         ]
         parts = [p for p in parts if p is not None]
         arrays = [np.concatenate([p[i] for p in parts]) for i in range(5)]
@@ -87,7 +174,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     paths = make_examples(cfg, workdir, progress=progress)
     t1 = time.time()
     data = load_examples(paths)
-    model, logs = ranker.train_ranker(
+    model, logs = train_ranker(
         data,
         steps=int(cfg.steps),
         batch=int(cfg.batch),

@@ -178,24 +178,6 @@ def checkpoint(value):
     return value
 
 
-def model_array(where, key: str, array: np.ndarray, like) -> np.ndarray:
-    """A bundle's array ``key`` checked against the model variable ``like``.
-
-    Raises:
-      jdraw.bundle.BundleError: wrong shape or dtype, or NaN/inf values.
-    """
-    from jdraw.bundle import BundleError
-
-    want_dtype = np.dtype(like.dtype)
-    if array.shape != tuple(like.shape):
-        raise BundleError(f"{where}: {key} has shape {array.shape}, the model needs {like.shape}")
-    if array.dtype != want_dtype:
-        raise BundleError(f"{where}: {key} has dtype {array.dtype}, the model needs {want_dtype}")
-    if np.issubdtype(array.dtype, np.floating) and not np.all(np.isfinite(array)):
-        raise BundleError(f"{where}: {key} contains NaN or inf; the weights are corrupt")
-    return array
-
-
 # ----------------------------------------------------------------------------- outputs
 
 

@@ -4,7 +4,7 @@ import numpy as np
 from flax import nnx
 
 import jdraw
-from jdraw import ranker, raster
+from jdraw import ranker, ranker_train, raster
 from jdraw.types import Plan, render, strokes_from_actions
 
 
@@ -62,9 +62,9 @@ def test_ranker_learns_top_to_bottom_and_left_to_right(rng):
         drawn = [s[::-1] if rng.random() < 0.5 else s for s in ref]
         imgs = np.stack([raster.render_strokes([s]) for s in ref])
         perm = rng.permutation(4)
-        parts.append(ranker.examples([drawn[k] for k in perm], imgs, ref))
+        parts.append(ranker_train.examples([drawn[k] for k in perm], imgs, ref))
     data = tuple(np.concatenate([p[i] for p in parts]) for i in range(5))
-    model, logs = ranker.train_ranker(data, steps=300, batch=128)
+    model, logs = ranker_train.train_ranker(data, steps=300, batch=128)
     right = 0
     for _ in range(10):
         ref = sorted(_bars(rng, 5), key=lambda s: s[0, 1])
@@ -99,3 +99,17 @@ def test_flipping_keeps_a_plan_within_its_step_bound(rng):
     bound = int(plan.lengths[0])
     out = ranker.reorder(plan, "ranker", model, max_rows=bound)
     assert out.lengths[0] <= bound
+
+
+def test_flipped_tokens_equal_tokens_of_reversed_strokes(rng):
+    from jdraw import demo, kanji
+
+    ks = kanji.load(progress=False)
+    d = demo.sample(ks, int(kanji.split_indices(ks, "test")[7]))
+    flip = rng.random(len(d.strokes)) < 0.5
+    tk0 = ranker.tokens(d.strokes)
+    tk = ranker.flipped(tk0, flip)
+    ref = ranker.tokens([p[::-1] if f else p for p, f in zip(tk0.paths, flip)])  # pixel paths
+    np.testing.assert_array_equal(tk.feats, ref.feats)
+    np.testing.assert_array_equal(tk.rfeats, ref.rfeats)
+    np.testing.assert_array_equal(tk.rel, ref.rel)

@@ -15,7 +15,7 @@ checkpoint has a ranker, ranked) and results/NAME_fig3.png.
 
 from absl import app, flags, logging
 
-from jdraw import evaluate
+from jdraw.evaluation import evaluate
 
 _CKPT = flags.DEFINE_string(
     "checkpoint", None, "Bundle folder or training workdir (default: bundled)."

@@ -8,7 +8,7 @@ Running the same command again resumes from the workdir's latest checkpoint.
 from absl import app, flags, logging
 from ml_collections import config_flags
 
-from jdraw import training
+from jdraw.train import loop as training
 
 _CONFIG = config_flags.DEFINE_config_file(
     "config", "configs/paper.py", "Training config (configs/*.py)."
@@ -22,7 +22,7 @@ def main(argv):
     cfg = _CONFIG.value
     workdir = _WORKDIR.value or f"runs/{cfg.get('name', 'run')}"
     if cfg.get("stage") == "ranker":
-        from jdraw import ranker_train
+        from jdraw.train import ranker as ranker_train
 
         print(ranker_train.train(cfg, workdir))
         return

@@ -23,8 +23,8 @@ import cv2
 import numpy as np
 
 import jdraw
-from jdraw import canonical
-from jdraw.types import render
+from jdraw.images import canonical
+from jdraw.plans import render
 
 KINDS = ("noise", "pixels", "border", "checker", "lines", "blank")
 
@@ -135,7 +135,8 @@ def main() -> None:
             signal.alarm(0)
             done += b
         drawn = render(p)
-        # jdraw.plan draws the input's canonical lines (jdraw.canonical): judge against those.
+        # jdraw.plan draws the input's canonical lines (jdraw.images.canonical):
+        # judge against those.
         for t, d, tr in zip(map(canonical.canonicalise, targets), drawn, p.truncated):
             left = bool((t & ~d).any())
             if (d & ~t).any():

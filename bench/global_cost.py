@@ -20,7 +20,9 @@ import numpy as np
 from flax import nnx
 
 import jdraw
-from jdraw import api, demo, kanji
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.planner import plan as api
 
 
 def global_cost(model, repeats: int = 30) -> tuple[float, float]:
@@ -50,8 +52,8 @@ def plan_rate(checkpoint, targets) -> float:
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--paper", default=str(jdraw.bundle.PAPER_BUNDLE))
-    p.add_argument("--ours", default=str(jdraw.bundle.DEFAULT_BUNDLE))
+    p.add_argument("--paper", default=str(jdraw.model.bundle.PAPER_BUNDLE))
+    p.add_argument("--ours", default=str(jdraw.model.bundle.DEFAULT_BUNDLE))
     p.add_argument("--chars", type=int, default=32)
     a = p.parse_args()
     ks = kanji.load(progress=False)

@@ -12,7 +12,8 @@ import time
 import numpy as np
 
 import jdraw
-from jdraw import demo, kanji
+from jdraw.data import demos as demo
+from jdraw.data import kanji
 
 OPTIONS = (
     dict(loop="vmap", order="model"),

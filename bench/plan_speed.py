@@ -25,7 +25,12 @@ import numpy as np
 from flax import nnx
 
 import jdraw
-from jdraw import api, demo, kanji, planner, slots, state
+from jdraw import state
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.planner import loop as planner
+from jdraw.planner import plan as api
+from jdraw.planner import slots
 
 
 def chars(n: int) -> np.ndarray:

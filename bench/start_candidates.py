@@ -1,4 +1,4 @@
-"""How well the start candidates (jdraw.start_net.start_candidates) fit KanjiVG's starts.
+"""How well the start candidates (jdraw.model.start_net.start_candidates) fit KanjiVG's starts.
 
   python bench/start_candidates.py [--chars 400]
 
@@ -12,8 +12,10 @@ import argparse
 import jax.numpy as jnp
 import numpy as np
 
-from jdraw import batches, demo, kanji, state
-from jdraw.start_net import start_candidates
+from jdraw import state
+from jdraw.data import batches, kanji
+from jdraw.data import demos as demo
+from jdraw.model.start_net import start_candidates
 
 
 def main():

@@ -16,8 +16,9 @@ import numpy as np
 import optax
 from flax import nnx
 
-from jdraw import kanji, training
-from jdraw import model as M
+from jdraw.data import kanji
+from jdraw.model import network as M
+from jdraw.train import loop as training
 
 
 def load_config(path):

@@ -1,4 +1,4 @@
-"""Ours: the paper's local model with a whole-canvas start model (jdraw.start_net).
+"""Ours: the paper's local model with a whole-canvas start model (jdraw.model.start_net).
 
 Command:
   python train.py --config configs/ours.py --workdir runs/ours

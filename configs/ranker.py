@@ -1,4 +1,4 @@
-"""The stroke ranker (jdraw.ranker): learned order and direction of traced strokes.
+"""The stroke ranker (jdraw.planner.ranker): learned order and direction of traced strokes.
 
 Command:
   python train.py --config configs/ranker.py --workdir runs/ranker

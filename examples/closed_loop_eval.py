@@ -19,7 +19,8 @@ import jax
 import numpy as np
 
 import jdraw
-from jdraw import demo, kanji
+from jdraw.data import demos as demo
+from jdraw.data import kanji
 from jdraw.robot import closed_loop, faults
 
 

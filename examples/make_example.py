@@ -9,7 +9,7 @@ drawn 9 px wide on a 320x320 page with a lighting gradient and a little noise.
 import cv2
 import numpy as np
 
-from jdraw import kanji
+from jdraw.data import kanji
 
 CODE = "04eac"  # 京  # from the test split (jdraw/data/split.json)
 

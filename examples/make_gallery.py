@@ -25,8 +25,10 @@ import time
 import cv2
 import numpy as np
 
-from jdraw import formats, tiling, viz
-from jdraw import image as im
+from jdraw.images import image as im
+from jdraw.io import formats
+from jdraw.io import pictures as viz
+from jdraw.tiling import plan_image as tiling
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

@@ -13,7 +13,9 @@ import time
 import numpy as np
 
 import jdraw
-from jdraw import demo, kanji, robot
+from jdraw import robot
+from jdraw.data import demos as demo
+from jdraw.data import kanji
 
 
 def main():

@@ -5,7 +5,7 @@
 
 Draws photo-like single lines (random length, height, number of humps, phase,
 stroke width and ink polarity; and an Archimedean spiral) too big for one
-canvas, plans them with :func:`jdraw.tiling.plan_image` (the bundled
+canvas, plans them with :func:`jdraw.tiling.plan_image.plan_image` (the bundled
 checkpoint) and prints, per image: tiles, strokes (1 is the goal), joins
 across tile borders, unjoined border ends, pen lifts inside tiles removed,
 precision / recall within 4 px of the true centreline, and pen-down length
@@ -18,8 +18,8 @@ import argparse
 
 import numpy as np
 
-from jdraw import image as im
-from jdraw import tiling
+from jdraw.images import image as im
+from jdraw.tiling import plan_image as tiling
 
 
 def lines(seed: int, waves: int):

@@ -14,7 +14,7 @@ import numpy as np
 from skimage.morphology import skeletonize
 
 import jdraw
-from jdraw import figures
+from jdraw.io import figures
 
 
 def text_image(s: str, font=cv2.FONT_HERSHEY_SIMPLEX, scale=2.2) -> np.ndarray:

@@ -1,12 +1,12 @@
 """jdraw: look at a bitmap of a drawing and work out how to draw it."""
 
-from jdraw.api import load_model as load_model
-from jdraw.api import plan as plan
-from jdraw.export import export as export
-from jdraw.metrics import pixel_accuracy as pixel_accuracy
-from jdraw.metrics import stroke_accuracy as stroke_accuracy
-from jdraw.raster import render_strokes as render_strokes
-from jdraw.tiling import ImagePlan as ImagePlan
+from jdraw.evaluation.metrics import pixel_accuracy as pixel_accuracy
+from jdraw.evaluation.metrics import stroke_accuracy as stroke_accuracy
+from jdraw.geometry import render_strokes as render_strokes
+from jdraw.model.checkpoints import export as export
+from jdraw.planner.plan import load_model as load_model
+from jdraw.planner.plan import plan as plan
+from jdraw.plans import Plan as Plan
+from jdraw.plans import render as render
 from jdraw.tiling import plan_image as plan_image
-from jdraw.types import Plan as Plan
-from jdraw.types import render as render
+from jdraw.tiling.plan_image import ImagePlan as ImagePlan

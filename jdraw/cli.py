@@ -7,7 +7,8 @@ import sys
 import time
 import traceback
 
-from jdraw import formats, stats, validate
+from jdraw import validate
+from jdraw.io import formats, stats
 
 _DESCRIPTION = """\
 Plan how to draw a picture with a pen: a photo or scan of handwriting, a
@@ -229,14 +230,14 @@ def _check(args) -> None:
     if not 0 < args.sheet_mm <= 1000:
         raise validate.InputError(f"--sheet-mm must be in (0, 1000], got {args.sheet_mm}")
     if args.checkpoint is not None:
-        from jdraw import api
+        from jdraw.planner import plan as api
 
         api.load_model(validate.checkpoint(args.checkpoint))
 
 
 def _draw(args) -> int:
-    from jdraw import image as jimage
-    from jdraw import tiling
+    from jdraw.images import image as jimage
+    from jdraw.tiling import plan_image as tiling
 
     outputs = [args.svg, args.gcode, args.json, args.png, args.gif, args.trajectory]
     _check(args)
@@ -305,13 +306,13 @@ def _draw(args) -> int:
             data["stats"] = plot.as_dict()
             formats.write_json(data, args.json)
         if args.png:
-            from jdraw import viz
+            from jdraw.io import pictures as viz
 
             box = viz.ink_box(result.prepared.ink, strokes)
             scale = min(4.0, 800.0 / max(box[2] - box[0], box[3] - box[1]))
             viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale, crop=box)
         if args.gif:
-            from jdraw import viz
+            from jdraw.io import pictures as viz
 
             viz.animate(result, args.gif)
     except (KeyError, ValueError, IndexError) as e:
@@ -369,7 +370,8 @@ def _draw(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Runs the command line; returns the exit status (see the help's epilog)."""
-    from jdraw import bundle, image
+    from jdraw.images import image
+    from jdraw.model import bundle
 
     args = _parser().parse_args(argv)
     debug = getattr(args, "debug", False)

@@ -44,7 +44,7 @@ def component_labels(target: np.ndarray) -> np.ndarray:
 
 
 def midpoint(pen: jax.Array, d: jax.Array) -> jax.Array:
-    """The pixel a local move ``d`` (``|d| <= 2``) skips: same rule as :mod:`jdraw.raster`."""
+    """The pixel a local move ``d`` (``|d| <= 2``) skips: same rule as :mod:`jdraw.geometry`."""
     return pen + jnp.sign(d) * (jnp.abs(d) // 2)
 
 

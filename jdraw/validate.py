@@ -18,7 +18,7 @@ import string
 import numpy as np
 
 CANVAS = 100
-# Fields a G-code pen template may name (see jdraw.formats.PlotterPreset).
+# Fields a G-code pen template may name (see jdraw.io.formats.PlotterPreset).
 TEMPLATE_FIELDS = (
     "z_up",
     "z_down",

@@ -9,7 +9,7 @@ import pytest
 
 @pytest.fixture(scope="session")
 def kanji_set():
-    from jdraw import kanji
+    from jdraw.data import kanji
 
     return kanji.load(progress=False)
 

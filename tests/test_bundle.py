@@ -5,8 +5,8 @@ import pytest
 from flax import nnx
 
 import jdraw
-from jdraw import bundle
-from jdraw import model as M
+from jdraw.model import bundle
+from jdraw.model import network as M
 
 
 @pytest.fixture

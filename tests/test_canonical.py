@@ -4,7 +4,11 @@ import cv2
 import numpy as np
 import pytest
 
-from jdraw import canonical, demo, evaluate, kanji, raster
+from jdraw import geometry as raster
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.evaluation import evaluate
+from jdraw.images import canonical
 
 
 def _line(points, shape=(40, 40)):
@@ -69,7 +73,7 @@ def test_kanjivg_targets_stay_nearly_untouched(kanji_set):
 
 
 def test_opencv_drawing_becomes_close_to_jdraw_drawing(kanji_set):
-    from jdraw import metrics
+    from jdraw.evaluation import metrics
 
     i = int(kanji.split_indices(kanji_set, "test")[3])
     ref = demo.sample(kanji_set, i).target

@@ -6,7 +6,10 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import bundle, demo, kanji, training
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.model import bundle
+from jdraw.train import loop as training
 
 EXAMPLE = pathlib.Path(__file__).parent.parent / "examples" / "images" / "kanji.png"
 STROKE_ACC_FLOOR = 0.90  # on 16 test characters; eval.py measures the full figure
@@ -19,7 +22,7 @@ def test_bundled_checkpoints_are_present_and_trained():
     ours = bundle.read_meta(bundle.DEFAULT_BUNDLE)
     assert ours["model"]["global_net"] == "unet"
     assert ours["provenance"].get("global_seen", 0) >= 30_000
-    from jdraw import api
+    from jdraw.planner import plan as api
 
     assert api.load_ranker(None) is not None  # the default orders with its ranker
 
@@ -59,7 +62,7 @@ def test_readme_example_plans(tmp_path):
 def test_eval_writes_results_and_figure(tmp_path):
     import json
 
-    from jdraw import evaluate
+    from jdraw.evaluation import evaluate
 
     res = evaluate.evaluate(
         None,

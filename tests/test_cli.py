@@ -11,8 +11,10 @@ import pytest
 from PIL import Image
 
 import jdraw
-from jdraw import cli, formats, tiling
-from jdraw import image as im
+from jdraw import cli
+from jdraw.images import image as im
+from jdraw.io import formats
+from jdraw.tiling import plan_image as tiling
 
 
 @pytest.fixture
@@ -157,7 +159,7 @@ def test_sheet_fit_keeps_aspect_and_centres():
 
 
 def test_help_states_defaults_and_gif_input(tmp_path, monkeypatch, capsys, word_photo):
-    from jdraw import planner
+    from jdraw.planner import loop as planner
 
     with pytest.raises(SystemExit):
         cli.main(["draw", "--help"])

@@ -4,7 +4,10 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import api, demo, kanji, raster
+from jdraw import geometry as raster
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.planner import plan as api
 
 
 def test_segment_pixels_is_8_connected_and_symmetric_rule():

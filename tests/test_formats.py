@@ -6,7 +6,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from jdraw import formats
+from jdraw.io import formats
 
 STROKES = [
     np.array([[10.0, 20.0], [30.5, 20.0], [30.5, 45.25]]),

@@ -17,9 +17,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import jdraw
-from jdraw import image as im
-from jdraw import tiling, validate
-from jdraw.types import render
+from jdraw import validate
+from jdraw.images import image as im
+from jdraw.plans import render
+from jdraw.tiling import plan_image as tiling
 
 settings.register_profile(
     "ci",
@@ -68,7 +69,7 @@ def canvases(draw):
 @settings(max_examples=60 * SCALE)
 @given(target=canvases(), canon=st.booleans())
 def test_plan_valid_images(target, canon):
-    from jdraw import canonical
+    from jdraw.images import canonical
 
     p = jdraw.plan(target, max_steps=MAX_STEPS, canonicalise=canon)
     assert p.lengths[0] <= MAX_STEPS

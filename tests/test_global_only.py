@@ -3,7 +3,9 @@
 import jax.numpy as jnp
 import numpy as np
 
-from jdraw import demo, global_only, raster
+from jdraw import geometry as raster
+from jdraw.data import demos as demo
+from jdraw.train import global_only
 
 
 def test_draw_segment_matches_raster_rule():
@@ -35,7 +37,7 @@ def test_raw_actions_start_each_stroke_pen_up(kanji_set):
 def test_global_only_trains_and_plans(tmp_path):
     import jdraw
     from configs import tiny
-    from jdraw import training
+    from jdraw.train import loop as training
 
     cfg = tiny.get_config()
     cfg.model.kind = "global_only"

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from skimage import morphology
 
-from jdraw import image as im
+from jdraw.images import image as im
 
 TOL_PX = 4.0  # the acceptance distance to the centreline, input pixels
 MIN_SCORE = 0.95

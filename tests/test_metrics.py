@@ -1,6 +1,6 @@
 import numpy as np
 
-from jdraw import metrics
+from jdraw.evaluation import metrics
 
 
 def _img(*pixels):

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from flax import nnx
 
-from jdraw import model as M
 from jdraw import state as S
+from jdraw.model import network as M
 
 TOL = 1e-5  # max abs difference, float32
 

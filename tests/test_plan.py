@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import api, demo
+from jdraw.data import demos as demo
+from jdraw.planner import plan as api
 
 
 @pytest.fixture(scope="module")

@@ -4,8 +4,10 @@ import numpy as np
 from flax import nnx
 
 import jdraw
-from jdraw import ranker, ranker_train, raster
-from jdraw.types import Plan, render, strokes_from_actions
+from jdraw import geometry as raster
+from jdraw.planner import ranker
+from jdraw.plans import Plan, render, strokes_from_actions
+from jdraw.train import ranker as ranker_train
 
 
 def _plan_of(strokes_list):
@@ -102,7 +104,8 @@ def test_flipping_keeps_a_plan_within_its_step_bound(rng):
 
 
 def test_flipped_tokens_equal_tokens_of_reversed_strokes(rng):
-    from jdraw import demo, kanji
+    from jdraw.data import demos as demo
+    from jdraw.data import kanji
 
     ks = kanji.load(progress=False)
     d = demo.sample(ks, int(kanji.split_indices(ks, "test")[7]))

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import raster
+from jdraw import geometry as raster
 from jdraw.robot import closed_loop, faults, look, model, trajectory
 from jdraw.robot.options import RobotOptions
 

@@ -25,7 +25,7 @@ def _plan(strokes_per_image):
 
 def _square(x0, y0, n):
     corners = np.array([[x0, y0], [x0, y0 + n], [x0 + n, y0 + n], [x0 + n, y0], [x0, y0]], float)
-    return jdraw.raster.polyline_pixels(corners).astype(float)
+    return jdraw.geometry.polyline_pixels(corners).astype(float)
 
 
 def _circle(cx, cy, r, k=48):

@@ -11,8 +11,13 @@ from flax import nnx
 from ml_collections import ConfigDict
 
 import jdraw
-from jdraw import api, bundle, demo, kanji, planner, state
-from jdraw import model as M
+from jdraw import state
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.model import bundle
+from jdraw.model import network as M
+from jdraw.planner import loop as planner
+from jdraw.planner import plan as api
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -87,7 +92,9 @@ def test_two_devices_plan_as_one():
         """
         import jax, numpy as np
         import jdraw
-        from jdraw import api, demo, kanji
+        from jdraw.planner import plan as api
+        from jdraw.data import demos as demo
+        from jdraw.data import kanji
         assert len(jax.devices()) == 2
         ks = kanji.load(progress=False)
         t = np.stack([demo.sample(ks, int(i)).target for i in kanji.split_indices(ks, "test")[:7]])

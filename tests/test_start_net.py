@@ -4,7 +4,7 @@ import jax.numpy as jnp
 import numpy as np
 from ml_collections import ConfigDict
 
-from jdraw import model as M
+from jdraw.model import network as M
 
 FAR_EFFECT = 1e-6  # logit change that counts as "depends on"
 
@@ -31,7 +31,7 @@ def test_paper_global_logit_does_not():
 
 def test_start_candidates_are_ends_junctions_and_drawn_ink():
     from jdraw import state
-    from jdraw.start_net import start_candidates
+    from jdraw.model.start_net import start_candidates
 
     t = np.zeros((20, 20), bool)
     t[10, 2:18] = True  # a horizontal line

@@ -8,8 +8,10 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import cli, stats, tiling
-from jdraw import image as im
+from jdraw import cli
+from jdraw.images import image as im
+from jdraw.io import stats
+from jdraw.tiling import plan_image as tiling
 
 # A 100 x 50 px image drawn 200 mm wide (2 mm a pixel): an L (30 + 40 px), a bar
 # (30 px) and a dot; pen-up travel (30,40)->(60,40) and (60,10)->(90,10), 30 px each.

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
-from jdraw import image as im
-from jdraw import raster, tiling
-from jdraw.types import Plan
+from jdraw import geometry as raster
+from jdraw.images import image as im
+from jdraw.plans import Plan
+from jdraw.tiling import plan_image as tiling
 
 TOL_PX = 4.0
 MIN_SCORE = 0.95
@@ -182,8 +183,8 @@ def test_character_sized_image_is_fitted_to_one_canvas():
     # the model must see it whole to order its strokes, not 5 regions.
     import pathlib
 
-    from jdraw import image as im
-    from jdraw import tiling
+    from jdraw.images import image as im
+    from jdraw.tiling import plan_image as tiling
 
     path = pathlib.Path(__file__).parent.parent / "examples" / "images" / "kanji.png"
     prep = im.prepare(im.load_image(path))

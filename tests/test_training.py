@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from configs import tiny
-from jdraw import bundle, training
+from jdraw.model import bundle
+from jdraw.train import loop as training
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -60,7 +61,7 @@ def test_resume_equals_uninterrupted(straight_run, tmp_path):
 def test_export_bundle_loads_and_plans(straight_run, tmp_path):
     import jdraw
 
-    out = jdraw.export(straight_run, tmp_path / "b")
+    out = jdraw.model.checkpoints(straight_run, tmp_path / "b")
     meta = json.loads((out / "bundle.json").read_text())
     assert meta["format_version"] == bundle.FORMAT_VERSION and meta["model"]["hidden"] == 16
     img = np.zeros((100, 100), bool)
@@ -77,7 +78,9 @@ def test_two_devices_step_equals_one_device():
         from flax import nnx
         from jax.sharding import Mesh, NamedSharding, PartitionSpec as P
         from configs import tiny
-        from jdraw import kanji, model as M, training
+        from jdraw.data import kanji
+        from jdraw.model import network as M
+        from jdraw.train import loop as training
         assert len(jax.devices()) == 2
         cfg = tiny.get_config()
         ks = kanji.load(progress=False)
@@ -117,7 +120,7 @@ _KILLER = textwrap.dedent(
     """
     import os, signal, sys
     from configs import tiny
-    from jdraw import training
+    from jdraw.train import loop as training
 
     mode, n, workdir = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     cfg = tiny.get_config()
@@ -179,8 +182,8 @@ def test_crash_recovery_logs_each_step_once_and_matches(straight_run, tmp_path):
 def test_export_keeps_the_training_config(straight_run, tmp_path):
     import jdraw
 
-    out = jdraw.export(straight_run, tmp_path / "b")
+    out = jdraw.model.checkpoints(straight_run, tmp_path / "b")
     want = json.loads((straight_run / "config.json").read_text())
     assert json.loads((out / "training_config.json").read_text()) == want
-    again = jdraw.export(out, tmp_path / "c")  # copying a bundle keeps it too
+    again = jdraw.model.checkpoints(out, tmp_path / "c")  # copying a bundle keeps it too
     assert json.loads((again / "training_config.json").read_text()) == want

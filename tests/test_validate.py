@@ -7,9 +7,12 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import bundle, cli, formats, tiling, validate
-from jdraw import image as im
-from jdraw.types import render
+from jdraw import cli, validate
+from jdraw.images import image as im
+from jdraw.io import formats
+from jdraw.model import bundle
+from jdraw.plans import render
+from jdraw.tiling import plan_image as tiling
 
 
 def _no_planner(*a, **k):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from jdraw import viz
+from jdraw.io import pictures as viz
 
 BLACK = np.array([20, 20, 20])
 PEN = np.array([230, 30, 30])

@@ -11,8 +11,9 @@ vp = pytest.importorskip("vpype")
 vpype_cli = pytest.importorskip("vpype_cli")
 
 import jdraw  # noqa: E402
-from jdraw import image as im  # noqa: E402
-from jdraw import tiling, vpype_plugin  # noqa: E402
+from jdraw.images import image as im  # noqa: E402
+from jdraw.io import vpype_plugin  # noqa: E402
+from jdraw.tiling import plan_image as tiling  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 MM = 96.0 / 25.4  # CSS pixels (vpype's unit) per mm
@@ -47,7 +48,7 @@ def test_entry_point_declared():
     tomllib = pytest.importorskip("tomllib")
     meta = tomllib.loads((ROOT / "pyproject.toml").read_text())
     eps = meta["project"]["entry-points"]["vpype.plugins"]
-    assert eps["jdraw"] == "jdraw.vpype_plugin:jdraw"
+    assert eps["jdraw"] == "jdraw.io.vpype_plugin:jdraw"
     assert any(d.startswith("vpype") for d in meta["project"]["optional-dependencies"]["vpype"])
 
 

@@ -24,8 +24,9 @@ import time
 import cv2
 import numpy as np
 
-from jdraw import image as im
-from jdraw import raster, types
+from jdraw import geometry as raster
+from jdraw import plans as types
+from jdraw.images import image as im
 from jdraw.robot import look
 from jdraw.robot.faults import Faults, true_options
 from jdraw.robot.options import RobotOptions

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from jdraw import formats, raster, types
-from jdraw import image as im
+from jdraw import geometry as raster
+from jdraw import plans as types
+from jdraw.images import image as im
+from jdraw.io import formats
 from jdraw.robot.options import RobotOptions
 from jdraw.robot.verifier import Report, verify
 
@@ -45,7 +47,7 @@ def image_trajectory(
       ``iou`` of what the nib drew against the plan, ``drawing_time_s``, ...)
       and the IK joint targets as a dict shaped like ROS
       ``trajectory_msgs/JointTrajectory``
-      (:func:`jdraw.formats.joint_trajectory_from_report`).
+      (:func:`jdraw.io.formats.joint_trajectory_from_report`).
     """
     sheet = to_sheet(strokes, shape, fill)
     plan = types.Plan(

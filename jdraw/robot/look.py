@@ -22,8 +22,8 @@ import cv2
 import mujoco
 import numpy as np
 
-from jdraw import image as im
-from jdraw import raster
+from jdraw import geometry as raster
+from jdraw.images import image as im
 from jdraw.robot import model
 from jdraw.robot.options import RobotOptions
 
@@ -174,8 +174,8 @@ def photograph(
 def see(photo: np.ndarray) -> np.ndarray:
     """The ink in a paper-frame picture as 1-pixel lines on the canvas: ``bool [100, 100]``.
 
-    The steps of ``jdraw.plan_image``: :func:`jdraw.image.prepare` (binarise,
-    denoise, skeletonise, polylines) and :func:`jdraw.image.render_polylines`
+    The steps of ``jdraw.plan_image``: :func:`jdraw.images.image.prepare` (binarise,
+    denoise, skeletonise, polylines) and :func:`jdraw.images.image.render_polylines`
     with the picture's known scale (no refitting: the canvas is the paper).
     """
     try:

@@ -8,7 +8,7 @@ import importlib.resources
 import mujoco
 import numpy as np
 
-from jdraw import raster
+from jdraw import geometry as raster
 from jdraw.robot.options import RobotOptions
 
 ARM_XML = "assets/robot/arm.xml"

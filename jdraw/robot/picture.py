@@ -23,7 +23,7 @@ from jdraw.robot.verifier import Report, verify
 
 def demo_plan() -> jdraw.Plan:
     """A hand-made plan: a square, its diagonal, a circle and a dot."""
-    sq = jdraw.raster.polyline_pixels(
+    sq = jdraw.geometry.polyline_pixels(
         np.array([[15, 15], [15, 55], [55, 55], [55, 15], [15, 15]])
     ).astype(float)
     th = np.linspace(0, 2 * np.pi, 64)

@@ -6,7 +6,7 @@ import jax
 import jax.numpy as jnp
 from mujoco import mjx
 
-from jdraw import raster
+from jdraw import geometry as raster
 from jdraw.robot.model import N_ARM
 
 

@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 
-from jdraw import raster
+from jdraw import geometry as raster
 from jdraw.robot import model
 from jdraw.robot.options import RobotOptions
 

@@ -12,7 +12,7 @@ import mujoco
 import numpy as np
 from mujoco import mjx
 
-from jdraw import types
+from jdraw import plans as types
 from jdraw.robot import faults as F
 from jdraw.robot import ik, model, rollout, trajectory
 from jdraw.robot.options import RobotOptions

@@ -5,7 +5,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from jdraw import viz
+from jdraw.io import pictures as viz
 
 
 def _canvas(shape, scale):

@@ -1,6 +1,6 @@
 """Drawings of any size: regions, tiles, planning each and stitching the strokes.
 
-:func:`plan_image` reduces an image to centrelines (:mod:`jdraw.image`), picks
+:func:`plan_image` reduces an image to centrelines (:mod:`jdraw.images.image`), picks
 the canvas scale (canvas pixels per input pixel) at which lines stay
 separable, and then either
 
@@ -26,8 +26,8 @@ import cv2
 import numpy as np
 from scipy.cluster.hierarchy import DisjointSet
 
-from jdraw import image as im
-from jdraw import raster
+from jdraw import geometry as raster
+from jdraw.images import image as im
 
 CANVAS = raster.CANVAS
 Planner = Callable[..., object]
@@ -498,7 +498,7 @@ def plan_image(
       progress: show a progress bar (on a terminal) when there are several batches.
 
     Raises:
-      jdraw.image.ImageError: unreadable or blank image; jdraw.validate.InputError
+      jdraw.images.image.ImageError: unreadable or blank image; jdraw.validate.InputError
         (both ``ValueError``): any other bad argument, named.
     """
     from scipy.spatial import cKDTree
@@ -590,7 +590,7 @@ def trace_planner(images, *, checkpoint=None, max_steps=None):
     Same signature and output type as :func:`jdraw.plan`; useful for tests
     and as a baseline.
     """
-    from jdraw.types import Plan
+    from jdraw.plans import Plan
 
     imgs = np.asarray(images)
     if imgs.ndim == 2:

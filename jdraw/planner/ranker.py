@@ -27,8 +27,8 @@ import jax
 import numpy as np
 from flax import nnx
 
-from jdraw import raster
-from jdraw.types import actions_from_strokes
+from jdraw import geometry as raster
+from jdraw.plans import actions_from_strokes
 
 STROKE_FEATURES = 20
 PAIR_FEATURES = 3 * STROKE_FEATURES + 9
@@ -50,7 +50,7 @@ def _pixels(points) -> np.ndarray:
 
 
 def stroke_masks(strokes, shape=(raster.CANVAS, raster.CANVAS)) -> np.ndarray:
-    """``bool [S, H, W]`` one image per stroke (as :func:`jdraw.raster.render_strokes`)."""
+    """``bool [S, H, W]`` one image per stroke (as :func:`jdraw.geometry.render_strokes`)."""
     out = np.zeros((len(strokes), *shape), bool)
     for k, s in enumerate(strokes):
         p = _pixels(s)
@@ -313,7 +313,7 @@ def apply_order(strokes, order, flip) -> list[np.ndarray]:
 
 def save(ranker: Ranker, out_dir, provenance: dict | None = None) -> pathlib.Path:
     """Writes ``ranker.npz`` and ``ranker.json`` into a bundle folder."""
-    from jdraw import bundle
+    from jdraw.model import bundle
 
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -325,7 +325,7 @@ def save(ranker: Ranker, out_dir, provenance: dict | None = None) -> pathlib.Pat
 
 def load(bundle_dir) -> Ranker | None:
     """The ranker stored in a bundle folder, or ``None`` if it has none."""
-    from jdraw import bundle
+    from jdraw.model import bundle
 
     d = pathlib.Path(bundle_dir)
     if not (d / "ranker.json").exists():
@@ -361,7 +361,7 @@ def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | Non
         than this (a reversed knight move takes two rows), its strokes are
         reordered but not flipped, so a plan keeps within its step bound.
     """
-    from jdraw.types import Plan
+    from jdraw.plans import Plan
 
     if method not in ORDERS:
         raise ValueError(f"order must be one of {ORDERS}, got {method!r}")

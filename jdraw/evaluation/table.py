@@ -1,6 +1,6 @@
 """Table I: collects eval.py results and training logs into results/table1.{json,md}.
 
-  python -m jdraw.table [--results results] [--runs runs]
+  python -m jdraw.evaluation.table [--results results] [--runs runs]
 
 Each row needs ``results/<config name>.json`` (from ``eval.py --name <config
 name>``) and its training workdir's ``metrics.jsonl``; a row without them is
@@ -98,7 +98,8 @@ def markdown(rows: list[dict]) -> str:
         "",
         "Pixel and stroke accuracy (§IV-A) on 100 random training and 100 random test characters "
         "(test in parentheses, as the paper prints it), the paper's numbers beside ours. "
-        "Made by `python -m jdraw.table` from `results/<name>.json` (eval.py) and each run's "
+        "Made by `python -m jdraw.evaluation.table` from `results/<name>.json` (eval.py) "
+        "and each run's "
         "`metrics.jsonl`.",
         "",
         "| id | model | pixel acc | paper | stroke acc | paper | whole test split (pixel / stroke) "

@@ -25,9 +25,10 @@ from flax import nnx
 from jax.sharding import Mesh, NamedSharding
 from jax.sharding import PartitionSpec as P
 
-from jdraw import batches, kanji, metrics
-from jdraw import model as M
 from jdraw import state as S
+from jdraw.data import batches, kanji
+from jdraw.evaluation import metrics
+from jdraw.model import network as M
 
 # ----------------------------------------------------------------------------
 # Losses.
@@ -100,7 +101,7 @@ def init_from_bundle(model: M.DrawModel, bundle_dir) -> int:
     Used to train a new global model beside a trained local model
     (``configs/ours.py``). Returns the number of arrays copied.
     """
-    from jdraw import bundle
+    from jdraw.model import bundle
 
     with np.load(pathlib.Path(bundle_dir) / "params.npz") as z:
         arrays = {k: z[k] for k in z.files}
@@ -111,7 +112,7 @@ def make_step(graphdef, tx, global_weight: float):
     def loss_fn(model):
         b = batch_ref[0]
         if "global_only" in b:
-            from jdraw import global_only
+            from jdraw.train import global_only
 
             loss, logs = global_only.loss(model, b["global_only"])
             return loss, {"loss": loss, **logs}
@@ -157,7 +158,7 @@ def make_batch(ks, pool, cfg, step: int) -> dict:
     rng = np.random.default_rng([int(cfg.seed), int(step)])
     t = cfg.train
     if cfg.model.get("kind", "two_scale") == "global_only":
-        from jdraw import global_only
+        from jdraw.train import global_only
 
         g = global_only.batch(ks, pool, rng, size=t.global_batch, strength=cfg.data.augment)
         return {"global_only": g}, t.global_batch  # each sample is an action of one stroke
@@ -265,7 +266,8 @@ def restore(mgr, step: int, model_state, opt_state):
 
 def validate(model_state, graphdef, ks, idx, max_steps: int = 1024) -> dict:
     """Pixel and stroke accuracy of planning the characters ``idx`` (no augmentation)."""
-    from jdraw import api, demo
+    from jdraw.data import demos as demo
+    from jdraw.planner import plan as api
 
     model = nnx.merge(graphdef, model_state)
     model.eval()
@@ -275,7 +277,10 @@ def validate(model_state, graphdef, ks, idx, max_steps: int = 1024) -> dict:
 
 
 def score(demos, plan) -> dict:
-    """Per-character metrics of a plan against demonstrations (:func:`jdraw.metrics.score`)."""
+    """Per-character metrics of a plan against demonstrations.
+
+    See :func:`jdraw.evaluation.metrics.score`.
+    """
     return metrics.score(demos, plan)
 
 
@@ -429,7 +434,7 @@ def train(cfg, workdir, *, progress: bool = True, stop_after: int | None = None)
             signal.signal(signal.SIGTERM, old)
     result = {"step": step, "done": step >= total, **progress_state, **logs}
     if step >= total:
-        from jdraw.export import export
+        from jdraw.model.checkpoints import export
 
         export(workdir, workdir / "bundle")
         v = validate(nnx.merge_state(params, rest), graphdef, ks, val_idx)

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from jdraw import demo as D
-from jdraw import raster
+from jdraw import geometry as raster
 from jdraw import state as S
-from jdraw.kanji import KanjiSet
+from jdraw.data import demos as D
+from jdraw.data.kanji import KanjiSet
 
 CANVAS = raster.CANVAS
 

@@ -105,8 +105,8 @@ def jdraw(image, checkpoint, size, width, height, polarity, min_gap, max_steps):
     size. Without --size/--width/--height, one input pixel is one CSS pixel.
     Sets the page size to the image's frame when none is set.
     """
-    from jdraw import image as jimage
-    from jdraw import tiling
+    from jdraw.images import image as jimage
+    from jdraw.tiling import plan_image as tiling
 
     if max_steps is not None and max_steps < 1:
         raise click.BadParameter("must be positive", param_hint="--max-steps")

@@ -188,7 +188,7 @@ def replay_policy() -> Policy:
 
 
 def model_policy(local_encoding: str = "window") -> Policy:
-    """The learned policy; ``ctx`` is a :class:`jdraw.model.DrawModel` in eval mode.
+    """The learned policy; ``ctx`` is a :class:`jdraw.model.network.DrawModel` in eval mode.
 
     Args:
       local_encoding: ``"window"`` (exact, cheap) or ``"full"`` (encode the

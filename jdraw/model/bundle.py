@@ -16,8 +16,8 @@ from flax import nnx, traverse_util
 
 FORMAT = "jdraw-bundle"
 FORMAT_VERSION = 1
-DEFAULT_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "default"  # ours
-PAPER_BUNDLE = pathlib.Path(__file__).parent / "checkpoints" / "paper"  # Table I, row 1
+DEFAULT_BUNDLE = pathlib.Path(__file__).parent.parent / "checkpoints" / "default"  # ours
+PAPER_BUNDLE = pathlib.Path(__file__).parent.parent / "checkpoints" / "paper"  # Table I, row 1
 TRAINING_CONFIG = "training_config.json"
 DEFAULT_MODEL = {"hidden": 256, "core": "lstm", "extraction": "late"}
 
@@ -63,7 +63,7 @@ def read_meta(bundle_dir) -> dict:
     path = pathlib.Path(bundle_dir) / "bundle.json"
     if not path.exists():
         raise BundleError(
-            f"{path}: no bundle.json here; is this a jdraw bundle (see jdraw.export)?"
+            f"{path}: no bundle.json here; is this a jdraw bundle (see jdraw.model.checkpoints)?"
         )
     try:
         meta = json.loads(path.read_text())
@@ -85,7 +85,7 @@ def _checked_array(where, key: str, array: np.ndarray, like) -> np.ndarray:
     """A bundle's array ``key`` checked against the model variable ``like``.
 
     Raises:
-      jdraw.bundle.BundleError: wrong shape or dtype, or NaN/inf values.
+      jdraw.model.bundle.BundleError: wrong shape or dtype, or NaN/inf values.
     """
     want_dtype = np.dtype(like.dtype)
     if array.shape != tuple(like.shape):
@@ -109,7 +109,7 @@ def load(bundle_dir):
     """
     from ml_collections import ConfigDict
 
-    from jdraw import model as M
+    from jdraw.model import network as M
 
     bundle_dir = pathlib.Path(bundle_dir)
     meta = read_meta(bundle_dir)

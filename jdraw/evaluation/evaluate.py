@@ -1,12 +1,12 @@
 """Evaluation as the paper's §IV-A, plus stroke order and inputs drawn other ways.
 
 Every split is planned once; the plan is then scored as traced and after each
-reordering (:func:`jdraw.ranker.reorder`): the learned ranker where the
+reordering (:func:`jdraw.planner.ranker.reorder`): the learned ranker where the
 checkpoint has one, and the x + y sort of the plan's own strokes as a
 reference rule. Besides KanjiVG as our rasteriser draws it, the test split is
 drawn by OpenCV (``cv2``: 1-pixel polylines through the curves, with the
 staircase joints of a common rasteriser) and with a 3-pixel pen (``thick3``),
-and scored with a 1-pixel tolerance (:func:`jdraw.metrics.score`).
+and scored with a 1-pixel tolerance (:func:`jdraw.evaluation.metrics.score`).
 """
 
 from __future__ import annotations
@@ -18,7 +18,12 @@ import time
 import cv2
 import numpy as np
 
-from jdraw import api, demo, figures, kanji, metrics, ranker
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.evaluation import metrics
+from jdraw.io import figures
+from jdraw.planner import plan as api
+from jdraw.planner import ranker
 
 VARIANTS = ("cv2", "thick3")
 
@@ -55,7 +60,7 @@ def plan_chars(
     Returns ``(demos, inputs bool [N, 100, 100], plan)``; ``inputs`` are the
     images planned: the demonstrations' targets, or ``style``'s drawing.
     """
-    from jdraw.types import Plan
+    from jdraw.plans import Plan
 
     demos = [demo.sample(ks, int(i)) for i in idx]
     if style is None:

@@ -163,8 +163,8 @@ def score(demos, plan, inputs=None, tol: int = 0) -> dict:
       exact_order, direction_agreement, stroke_ratio (drawn / true strokes),
       truncated, n.
     """
-    from jdraw import raster
-    from jdraw.types import render
+    from jdraw import geometry as raster
+    from jdraw.plans import render
 
     drawn = render(plan)
     keys = ("pixel", "stroke", "order", "order_all", "exact", "direction", "ratio")

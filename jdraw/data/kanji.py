@@ -32,7 +32,7 @@ import numpy as np
 VIEWBOX = 109.0
 CANVAS = 100
 FIRST_CODE = 0x2E80
-SPLIT_FILE = pathlib.Path(__file__).parent / "data" / "split.json"
+SPLIT_FILE = pathlib.Path(__file__).parent / "split.json"
 _SVG_PATH = "{http://www.w3.org/2000/svg}path"
 # A stroke's id: kvg:<code point>[-<variant>]-s<stroke number>.
 _STROKE_ID = re.compile(r"kvg:([0-9a-f]+)(?:-[A-Za-z0-9]+)?-s(\d+)")

@@ -2,7 +2,7 @@
 
 ``plot_stats(result.strokes, result.shape, width_mm=150)`` answers what a
 plotter owner asks before sending a drawing: how much is drawn, how far the
-pen travels lifted, and how long the G-code of :func:`jdraw.formats.to_gcode`
+pen travels lifted, and how long the G-code of :func:`jdraw.io.formats.to_gcode`
 with the same preset and feeds will take.
 """
 
@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from jdraw import formats
+from jdraw.io import formats
 
 
 @dataclasses.dataclass(frozen=True)
@@ -91,12 +91,12 @@ def plot_stats(
     Args:
       strokes: ``[n, 2]`` (x, y) input-pixel polylines in drawing order.
       shape: ``(H, W)`` of the input image.
-      width_mm, height_mm: physical size (as :func:`jdraw.formats.to_gcode`);
+      width_mm, height_mm: physical size (as :func:`jdraw.io.formats.to_gcode`);
         lengths are then in mm. Without either, lengths are in input pixels
         and the time is for G-code's default size, 100 mm wide.
       preset, overrides: the G-code preset and its changed fields (``feed``,
         ``travel_feed``, ``z_up``, ``z_down``, ``z_feed``, ``dwell_s``), as
-        :func:`jdraw.formats.to_gcode` takes them.
+        :func:`jdraw.io.formats.to_gcode` takes them.
       rapid_mm_min: speed of ``G0`` moves, which G-code leaves to the machine
         (an assumption; pass your machine's).
     """

@@ -130,7 +130,7 @@ def _as_drawing(plan, index: int, target):
     if hasattr(plan, "actions"):  # jdraw.Plan: one image of a batch, canvas pixels
         strokes = plan.strokes[index]
         if target is None:
-            from jdraw import raster
+            from jdraw import geometry as raster
 
             target = raster.render_strokes(strokes, (raster.CANVAS, raster.CANVAS))
         return list(strokes), target

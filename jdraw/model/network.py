@@ -29,7 +29,7 @@ import jax
 import jax.numpy as jnp
 from flax import nnx
 
-from jdraw.start_net import NOT_CANDIDATE, StartNet, start_candidates
+from jdraw.model.start_net import NOT_CANDIDATE, StartNet, start_candidates
 from jdraw.state import GLOBAL_CHANNELS, LOCAL_CHANNELS
 
 PATCH = 5
@@ -185,7 +185,7 @@ class DrawModel(nnx.Module):
         cut a 5x5 patch of the state first, then encode it).
       kind: ``"two_scale"`` (the paper's model) or ``"global_only"`` (ablation
         c: the global model looped on itself, with a touch head; see
-        :mod:`jdraw.global_only`).
+        :mod:`jdraw.train.global_only`).
     """
 
     def __init__(
@@ -259,7 +259,7 @@ class DrawModel(nnx.Module):
         """``[N, 100, 100, 4]`` -> next-start logits ``[N, 100, 100]``.
 
         ``restrict``: for our start model, planning prefers the pixels where a
-        stroke can begin (:func:`jdraw.start_net.start_candidates`); training
+        stroke can begin (:func:`jdraw.model.start_net.start_candidates`); training
         scores the raw logits. The paper's model is never restricted.
         """
         if self.global_net == "unet":

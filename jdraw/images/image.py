@@ -5,12 +5,12 @@ The planner sees 1-pixel, 8-connected lines on a ``100 x 100`` canvas (paper
 noise and either polarity, so :func:`prepare` turns it into an ink mask and a
 centreline skeleton in *input* pixels, and :func:`skeleton_polylines` turns the
 skeleton into polylines. Those polylines, not a resized bitmap, are what gets
-drawn onto a canvas (with :func:`jdraw.raster.render_strokes`, the one line
+drawn onto a canvas (with :func:`jdraw.geometry.render_strokes`, the one line
 rule), so the scale can be chosen freely and every canvas point maps back to
 input pixels through a kept :class:`CanvasTransform`.
 
 Coordinates are ``(x, y)``: ``x`` the column, ``y`` the row, pixel centres at
-integers, as in :mod:`jdraw.raster`.
+integers, as in :mod:`jdraw.geometry`.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ import cv2
 import numpy as np
 from skimage import filters, measure, morphology
 
-from jdraw import raster
+from jdraw import geometry as raster
 
 CANVAS = raster.CANVAS
 # A KanjiVG character spans about this many canvas pixels.
@@ -518,7 +518,7 @@ def render_polylines(
 ) -> np.ndarray:
     """Draws input-pixel polylines onto a canvas of ``shape`` as thin 8-connected lines.
 
-    The lines are rasterised with :func:`jdraw.raster.render_strokes` and the
+    The lines are rasterised with :func:`jdraw.geometry.render_strokes` and the
     staircase corners this leaves are thinned away, so the result is what the
     planner is trained on. Returns ``bool [H, W]``.
     """

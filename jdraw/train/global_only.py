@@ -5,7 +5,7 @@ went down, unvisited target), picks the next pen position among all pixels
 and, through an extra fully connected head, whether the pen is down on the
 way there. It is trained on raw actions (points along each stroke, not the
 +-2 local moves), as the paper did. Pen-down moves ink straight segments with
-the line rule of :mod:`jdraw.raster`.
+the line rule of :mod:`jdraw.geometry`.
 
 For a fair comparison with row 1 the next position is chosen among ink
 pixels, as row 1's masks keep its pen on ink.
@@ -18,10 +18,10 @@ import jax.numpy as jnp
 import numpy as np
 import optax
 
-from jdraw import demo as D
-from jdraw import raster
+from jdraw import geometry as raster
 from jdraw import state as S
-from jdraw.batches import global_state_arrays
+from jdraw.data import demos as D
+from jdraw.data.batches import global_state_arrays
 
 CANVAS = raster.CANVAS
 RAW_SPACING = (3, 5)  # raw points every 3-4 pen positions (about 5-8 pixels)
@@ -81,7 +81,7 @@ def batch(ks, pool, rng, *, size: int, strength: float) -> dict:
 
 def heads(model, states):
     """``[N, 100, 100, 4]`` -> (position logits ``[N, 100, 100]``, touch logit ``[N]``)."""
-    from jdraw.model import _conv, encode
+    from jdraw.model.network import _conv, encode
 
     f = encode(states, model.global_first, model.trunk, model.global_norms)
     pos = _conv(f, model.global_head.w[...], model.global_head.b[...], "VALID")[..., 0]
@@ -106,7 +106,7 @@ def loss(model, g: dict):
 
 
 def draw_segment(img: jax.Array, a: jax.Array, b: jax.Array) -> jax.Array:
-    """``img`` with the pixels of :func:`jdraw.raster.segment_pixels` ``(a, b)`` set."""
+    """``img`` with the pixels of :func:`jdraw.geometry.segment_pixels` ``(a, b)`` set."""
     d = b - a
     n = jnp.maximum(jnp.max(jnp.abs(d)), 1)
     k = jnp.arange(CANVAS + 1)[:, None]
@@ -119,7 +119,7 @@ def draw_segment(img: jax.Array, a: jax.Array, b: jax.Array) -> jax.Array:
 
 def run(model, target, max_steps: int, max_idle: int = 16):
     """Plans one image with the looped global model; returns ``planner.Out``-like fields."""
-    from jdraw.planner import Out
+    from jdraw.planner.loop import Out
 
     def cond(c):
         visited, last, pen, has_pen, actions, n, idle = c

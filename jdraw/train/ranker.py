@@ -1,4 +1,4 @@
-"""Training the stroke ranker (:mod:`jdraw.ranker`) on the tracer's own strokes.
+"""Training the stroke ranker (:mod:`jdraw.planner.ranker`) on the tracer's own strokes.
 
 The tracer (a planner bundle) plans augmented training characters; each drawn
 stroke is labelled with the KanjiVG stroke it matches, and the ranker learns
@@ -19,7 +19,9 @@ import numpy as np
 import optax
 from flax import nnx
 
-from jdraw import demo, kanji, ranker
+from jdraw.data import demos as demo
+from jdraw.data import kanji
+from jdraw.planner import ranker
 
 
 def examples(drawn_strokes, ref_images, ref_points, iou: float = 0.5):
@@ -117,7 +119,7 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     strokes); ``cfg.get("demo_chars", 0)`` more contribute KanjiVG's strokes
     as they are. One npz per chunk, written whole or not at all.
     """
-    from jdraw import api
+    from jdraw.planner import plan as api
 
     workdir = pathlib.Path(workdir)
     (workdir / "examples").mkdir(parents=True, exist_ok=True)

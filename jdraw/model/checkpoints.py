@@ -1,4 +1,4 @@
-"""``jdraw.export``: a training checkpoint to an inference bundle."""
+"""``jdraw.model.checkpoints``: a training checkpoint to an inference bundle."""
 
 from __future__ import annotations
 
@@ -8,11 +8,11 @@ import pathlib
 from flax import nnx
 from ml_collections import ConfigDict
 
-from jdraw import bundle
+from jdraw.model import bundle
 
 
 def _latest(workdir: pathlib.Path):
-    from jdraw import training
+    from jdraw.train import loop as training
 
     cfg_path = workdir / "config.json"
     if not cfg_path.exists():
@@ -22,7 +22,7 @@ def _latest(workdir: pathlib.Path):
     step = mgr.latest_step()
     if step is None:
         raise bundle.BundleError(f"{workdir / 'checkpoints'}: no checkpoint saved yet")
-    from jdraw import model as M
+    from jdraw.model import network as M
 
     mdl = M.build(cfg.model, seed=int(cfg.seed))
     graphdef, st = nnx.split(mdl)

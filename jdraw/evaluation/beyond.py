@@ -1,6 +1,6 @@
 """The "beyond the paper" table: the paper's model beside ours, one ingredient at a time.
 
-  python -m jdraw.beyond [--results results] [--out results/beyond.md]
+  python -m jdraw.evaluation.beyond [--results results] [--out results/beyond.md]
 
 Reads the ``eval.py`` results of the paper's model (``paper.json``, scored
 with our ranker too) and of ours (``ours.json``) and writes a Markdown table:

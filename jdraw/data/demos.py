@@ -2,7 +2,7 @@
 
 Each stroke is rasterised to a 1-pixel, 8-connected pixel path and cut into
 local moves with ``|dx|, |dy| <= 2`` that stay on that path: a two-pixel move
-is taken only where :func:`jdraw.raster.segment_pixels` inks exactly the path
+is taken only where :func:`jdraw.geometry.segment_pixels` inks exactly the path
 pixel it skips. The target image is the union of the paths, so it is exactly
 what replaying the demonstration draws.
 """
@@ -13,7 +13,8 @@ import dataclasses
 
 import numpy as np
 
-from jdraw import kanji, raster
+from jdraw import geometry as raster
+from jdraw.data import kanji
 
 CANVAS = raster.CANVAS
 
@@ -75,7 +76,7 @@ class Demo:
 
     def actions(self, start=(0, 0)) -> np.ndarray:
         """``int32 [T, 3]`` (dx, dy, touch) as :class:`jdraw.Plan` stores them."""
-        from jdraw.types import actions_from_strokes
+        from jdraw.plans import actions_from_strokes
 
         return actions_from_strokes(self.strokes, start)
 
@@ -115,7 +116,7 @@ def sample(
 
 
 def replay_arrays(demos: list[Demo], max_strokes: int, max_moves: int):
-    """Pads demonstrations for :func:`jdraw.planner.replay_policy`.
+    """Pads demonstrations for :func:`jdraw.planner.loop.replay_policy`.
 
     Returns:
       ``(starts int32 [B, S, 2], moves int32 [B, S, L, 2], n_moves int32 [B, S])``.

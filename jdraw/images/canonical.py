@@ -12,7 +12,7 @@ canonical lines, and leaves canonical lines as they are:
 3. a 1-pixel break between two line ends that point at each other is filled.
 
 Pixels a plan draws then lie within 1 pixel of the input's ink, not on it:
-:func:`jdraw.metrics.tolerant_pixel_accuracy` scores plans of such inputs.
+:func:`jdraw.evaluation.metrics.tolerant_pixel_accuracy` scores plans of such inputs.
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ Each slot holds one image and its state machine::
 
 The state machine is written once, for one image (:func:`load`, :func:`start`,
 :func:`move`, with :func:`_settle` deciding when a stroke ends); it is the same
-as :func:`jdraw.planner.run`'s, so the actions are identical to planning each
+as :func:`jdraw.planner.loop.run`'s, so the actions are identical to planning each
 image alone. Batching happens in one place, :func:`stream`'s ``step``:
 
 * a finished slot takes the next image of the queue;
@@ -30,7 +30,7 @@ import jax
 import jax.numpy as jnp
 
 from jdraw import state as S
-from jdraw.planner import Limits, Policy
+from jdraw.planner.loop import Limits, Policy
 
 NEEDS_START, MOVING, DONE = 0, 1, 2
 
@@ -199,7 +199,7 @@ def stream(
     """Plans the first ``count`` images of a queue through ``slots`` slots.
 
     Args:
-      policy: see :class:`jdraw.planner.Policy`.
+      policy: see :class:`jdraw.planner.loop.Policy`.
       ctx: passed through to the policy (e.g. the model, in eval mode: the
         global sub-batch must not change any image's numbers).
       pstate: the policy's initial carried state, the same for every image.
@@ -207,7 +207,7 @@ def stream(
         padding and never planned.
       labels: ``int32 [Q, H, W]`` 8-connected component labels.
       count: ``int32 []`` images in the queue.
-      limits: step bounds, per image as in :func:`jdraw.planner.run`.
+      limits: step bounds, per image as in :func:`jdraw.planner.loop.run`.
       slots: images in flight (the local model's batch), at most ``Q``.
       global_batch: the global model's sub-batch ``K``.
 

@@ -11,8 +11,12 @@ import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
-from jdraw import bundle, planner, raster, slots, state, validate
-from jdraw.types import Plan, strokes_from_actions
+from jdraw import geometry as raster
+from jdraw import state, validate
+from jdraw.model import bundle
+from jdraw.planner import loop as planner
+from jdraw.planner import slots
+from jdraw.plans import Plan, strokes_from_actions
 
 CANVAS = state.CANVAS
 _TRACES = {"plan": 0}  # counts traces of the planning function (tests check it)
@@ -43,7 +47,7 @@ def _load(path: str | None, mtime: float):
     if path is None:
         from ml_collections import ConfigDict
 
-        from jdraw import model as M
+        from jdraw.model import network as M
 
         mdl = M.build(ConfigDict(bundle.DEFAULT_MODEL), seed=0)
         mdl.eval()
@@ -64,7 +68,7 @@ def load_model(checkpoint=None):
     else:
         path = pathlib.Path(checkpoint)
         if not (path / "bundle.json").exists() and path.exists():
-            from jdraw.export import bundle_for_workdir
+            from jdraw.model.checkpoints import bundle_for_workdir
 
             path = bundle_for_workdir(path)
     if path is None:
@@ -80,7 +84,7 @@ def _planner(graphdef, limits: planner.Limits, local_encoding: str, kind: str = 
     def one(st, target, labels):
         model = nnx.merge(graphdef, st)
         if kind == "global_only":
-            from jdraw import global_only
+            from jdraw.train import global_only
 
             return global_only.run(model, target, limits.max_steps)
         return planner.run(policy, model, (), target, labels, limits)
@@ -106,7 +110,7 @@ def load_ranker(checkpoint=None):
 
 @functools.lru_cache(maxsize=8)
 def _load_ranker(path: str):
-    from jdraw import ranker
+    from jdraw.planner import ranker
 
     return ranker.load(path)
 
@@ -195,7 +199,7 @@ def plan(
       images: ``[B, 100, 100]`` or ``[100, 100]``; nonzero is ink: lines of
         any rasteriser, 1-4 pixels wide, with 1-pixel breaks allowed. bool,
         uint8 or float.
-      checkpoint: a bundle folder (see :func:`jdraw.export`), a training
+      checkpoint: a bundle folder (see :func:`jdraw.model.checkpoints`), a training
         workdir, a ``DrawModel``, or ``None`` for the bundled model.
       max_steps: action rows per image (default 1024); a plan cut by it is
         marked ``truncated``.
@@ -203,17 +207,17 @@ def plan(
         ``"full"`` is the slow reference.
       order: ``"auto"`` (the checkpoint's stroke ranker if it has one, else
         as traced), ``"model"`` (as the planner traced them), ``"ranker"``
-        (the learned order and directions, :mod:`jdraw.ranker`) or ``"xy"``
+        (the learned order and directions, :mod:`jdraw.planner.ranker`) or ``"xy"``
         (sorted by the start's x + y, a reference rule).
       canonicalise: first map the ink to canonical 1-pixel lines
-        (:func:`jdraw.canonical.canonicalise`: thin thick pens, drop
+        (:func:`jdraw.images.canonical.canonicalise`: thin thick pens, drop
         staircase corners, fill 1-pixel breaks). The plan then inks pixels
         within 1 pixel of the input's ink; lines already canonical, like
         KanjiVG as jdraw draws it, are left as they are.
       batch_size: images in flight at once (per device); any number of
         images streams through them in one compiled loop.
       global_batch: slots that the global model starts together.
-      loop: ``"slots"`` (default; see :mod:`jdraw.slots`) or ``"vmap"`` (the
+      loop: ``"slots"`` (default; see :mod:`jdraw.planner.slots`) or ``"vmap"`` (the
         old loop, every image waiting for the batch's longest stroke); same
         actions.
       devices: the JAX devices the slot batch is spread over (default all).
@@ -221,7 +225,8 @@ def plan(
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
     """
-    from jdraw import canonical, ranker
+    from jdraw.images import canonical
+    from jdraw.planner import ranker
 
     if order not in ("auto", *ranker.ORDERS):
         raise ValueError(f"order must be 'auto' or one of {ranker.ORDERS}, got {order!r}")
@@ -273,13 +278,13 @@ def _replayer(limits: planner.Limits):
 
 
 def replay(demos, *, max_steps: int | None = None) -> Plan:
-    """Runs demonstrations (:class:`jdraw.demo.Demo`) through the planner's state machine.
+    """Runs demonstrations (:class:`jdraw.data.demos.Demo`) through the planner's state machine.
 
     The planner's own loop, masks and renderer, with the demonstration's
     moves in place of the model's: ``render(replay(d)) == target`` is the
     pipeline's losslessness check.
     """
-    from jdraw import demo as D
+    from jdraw.data import demos as D
 
     demos = list(demos)
     limits = planner.Limits(

@@ -1,0 +1,1 @@
+"""KanjiVG characters, demonstrations and training batches."""

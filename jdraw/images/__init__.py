@@ -1,0 +1,1 @@
+"""Images in: loading, binarising, skeletons, canonical lines, fitting to the canvas."""

@@ -1,0 +1,1 @@
+"""Plans out: SVG, G-code, JSON, pictures and the vpype plugin."""

@@ -1,0 +1,1 @@
+"""The networks, their bundles and training checkpoints."""

@@ -1,0 +1,1 @@
+"""Planning: the policy loop, the slot batcher, stroke ordering and ``plan``."""

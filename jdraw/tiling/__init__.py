@@ -1,0 +1,1 @@
+"""Large images: tiles, planning them, stitching the strokes."""

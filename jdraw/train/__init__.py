@@ -1,0 +1,1 @@
+"""Training: losses, the step, the loop, the stroke ranker."""

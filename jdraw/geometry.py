@@ -9,14 +9,50 @@ the pipeline lossless.
 
 from __future__ import annotations
 
+import jax
+import jax.numpy as jnp
 import numpy as np
 
-CANVAS = 100
+CANVAS = 100  # side of the square canvas the models see, in pixels
+
+# Local pen moves: index k <-> (dx, dy) = (k % 5 - 2, k // 5 - 2); index 12 is (0, 0).
+MOVES = np.stack(np.meshgrid(np.arange(-2, 3), np.arange(-2, 3)), -1).reshape(25, 2)
+STAY = 12
 
 
-def _div_round_half_toward_zero(m: np.ndarray, n: int) -> np.ndarray:
-    """``m / n`` rounded half toward zero, exactly, for integers ``m`` and ``n > 0``."""
-    return np.sign(m) * ((2 * np.abs(m) + n - 1) // (2 * n))
+def move_index(d):
+    """Index ``[...]`` of moves ``d`` ``[..., 2]`` (dx, dy) in ``MOVES``; numpy or jnp."""
+    if not isinstance(d, jax.Array):
+        d = np.asarray(d)
+    return (d[..., 1] + 2) * 5 + (d[..., 0] + 2)
+
+
+def _div_round_half_toward_zero(m, n):
+    """``m / n`` rounded half toward zero, exactly, for integers ``m`` and ``n > 0``.
+
+    The one line rule: the k-th of ``n`` steps from ``a`` along ``d`` lands on
+    ``a + round(k * d / n)``. Works on numpy and (inside ``jit``) jnp arrays.
+    """
+    xp = jnp if isinstance(m, jax.Array) or isinstance(n, jax.Array) else np
+    return xp.sign(m) * ((2 * xp.abs(m) + n - 1) // (2 * n))
+
+
+def midpoint(pen: jax.Array, d: jax.Array) -> jax.Array:
+    """The pixel a local move ``d`` (``|d| <= 2``) skips (step 1 of 2 of the line rule)."""
+    return pen + _div_round_half_toward_zero(d, 2)
+
+
+def paint_segment(img: jax.Array, a: jax.Array, b: jax.Array) -> jax.Array:
+    """``img`` with the pixels of :func:`segment_pixels` ``(a, b)`` set, inside ``jit``.
+
+    ``img`` is ``bool [H, W]``; ``a`` and ``b`` lie on it.
+    """
+    d = b - a
+    n = jnp.max(jnp.abs(d))
+    k = jnp.arange(max(img.shape) + 1)[:, None]
+    p = a[None] + _div_round_half_toward_zero(k * d[None], jnp.maximum(n, 1))
+    p = jnp.where((k <= n), p, a[None])
+    return img.at[p[:, 1], p[:, 0]].set(True)
 
 
 def segment_pixels(a, b) -> np.ndarray:

@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 
 
 @dataclasses.dataclass
@@ -77,10 +77,10 @@ def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:
     return np.asarray(rows, np.int32).reshape(-1, 3)
 
 
-def render(plan: Plan, shape: tuple[int, int] = (raster.CANVAS, raster.CANVAS)) -> np.ndarray:
+def render(plan: Plan, shape: tuple[int, int] = (geometry.CANVAS, geometry.CANVAS)) -> np.ndarray:
     """Draws each image's strokes: ``bool [B, H, W]``."""
     return (
-        np.stack([raster.render_strokes(s, shape) for s in plan.strokes])
+        np.stack([geometry.render_strokes(s, shape) for s in plan.strokes])
         if len(plan)
         else (np.zeros((0, *shape), bool))
     )

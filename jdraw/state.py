@@ -21,19 +21,10 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-CANVAS = 100
+from jdraw.geometry import MOVES, STAY, midpoint
+
 LOCAL_CHANNELS = 3
 GLOBAL_CHANNELS = 4
-
-# Move index k <-> (dx, dy) = (k % 5 - 2, k // 5 - 2); index 12 is (0, 0).
-MOVES = np.stack(np.meshgrid(np.arange(-2, 3), np.arange(-2, 3)), -1).reshape(25, 2)
-STAY = 12
-
-
-def move_index(d) -> np.ndarray:
-    """Index ``[...]`` of moves ``d`` ``[..., 2]`` (dx, dy) in ``MOVES``."""
-    d = np.asarray(d)
-    return (d[..., 1] + 2) * 5 + (d[..., 0] + 2)
 
 
 def component_labels(target: np.ndarray) -> np.ndarray:
@@ -41,11 +32,6 @@ def component_labels(target: np.ndarray) -> np.ndarray:
     n, labels = cv2.connectedComponents(np.asarray(target, np.uint8), connectivity=8)
     del n
     return labels.astype(np.int32)
-
-
-def midpoint(pen: jax.Array, d: jax.Array) -> jax.Array:
-    """The pixel a local move ``d`` (``|d| <= 2``) skips: same rule as :mod:`jdraw.geometry`."""
-    return pen + jnp.sign(d) * (jnp.abs(d) // 2)
 
 
 def apply_move(visited: jax.Array, pen: jax.Array, d: jax.Array):
@@ -131,8 +117,3 @@ def allowed_starts(target, visited, only_unvisited) -> jax.Array:
     dif = target & ~visited
     near = jax.lax.reduce_window(dif, False, jax.lax.bitwise_or, (3, 3), (1, 1), "SAME")
     return jnp.where(only_unvisited, dif, target & near)
-
-
-def move_index_jnp(d: jax.Array) -> jax.Array:
-    """:func:`move_index` inside ``jit``."""
-    return (d[..., 1] + 2) * 5 + (d[..., 0] + 2)

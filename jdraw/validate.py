@@ -17,7 +17,8 @@ import string
 
 import numpy as np
 
-CANVAS = 100
+from jdraw.geometry import CANVAS
+
 # Fields a G-code pen template may name (see jdraw.io.formats.PlotterPreset).
 TEMPLATE_FIELDS = (
     "z_up",

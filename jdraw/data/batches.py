@@ -12,16 +12,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw import state as S
 from jdraw.data import demos as D
 from jdraw.data.kanji import KanjiSet
 
-CANVAS = raster.CANVAS
+CANVAS = geometry.CANVAS
 
 
 def _union(strokes) -> np.ndarray:
-    return raster.render_strokes(strokes) if strokes else np.zeros((CANVAS, CANVAS), bool)
+    return geometry.render_strokes(strokes) if strokes else np.zeros((CANVAS, CANVAS), bool)
 
 
 def local_batch(
@@ -51,7 +51,7 @@ def local_batch(
         "visited": np.zeros((strokes, CANVAS, CANVAS), bool),
         "pts": np.zeros((strokes, max_len + 1, 2), np.int32),
         "n_moves": np.zeros(strokes, np.int32),
-        "move": np.full((strokes, max_len), S.STAY, np.int32),
+        "move": np.full((strokes, max_len), geometry.STAY, np.int32),
         "touch": np.zeros((strokes, max_len), np.float32),
         "valid": np.zeros((strokes, max_len), bool),
         "slot_b": np.zeros(windows, np.int32),
@@ -80,7 +80,7 @@ def local_batch(
             out["pts"][b, : n + 1] = s[: n + 1]
             out["pts"][b, n + 1 :] = s[n]
             out["n_moves"][b] = n
-            mv = S.move_index(np.diff(s[: n + 1], axis=0))
+            mv = geometry.move_index(np.diff(s[: n + 1], axis=0))
             out["move"][b, :n] = mv
             out["touch"][b, :n] = 1.0
             out["valid"][b, :steps] = True

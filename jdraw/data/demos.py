@@ -13,16 +13,16 @@ import dataclasses
 
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.data import kanji
 
-CANVAS = raster.CANVAS
+CANVAS = geometry.CANVAS
 
 
 def clean_path(pixels: np.ndarray) -> np.ndarray:
     """Makes an integer point sequence a thin 8-connected path.
 
-    Gaps are filled with :func:`raster.polyline_pixels`; a pixel whose
+    Gaps are filled with :func:`geometry.polyline_pixels`; a pixel whose
     neighbours on the path already touch (the corner of a staircase) is
     dropped, as is a repeat.
 
@@ -32,7 +32,7 @@ def clean_path(pixels: np.ndarray) -> np.ndarray:
     Returns:
       ``[m, 2]`` int64 path, consecutive pixels 8-adjacent.
     """
-    path = raster.polyline_pixels(pixels)
+    path = geometry.polyline_pixels(pixels)
     out: list[np.ndarray] = []
     for p in path:
         if out and np.array_equal(out[-1], p):
@@ -82,7 +82,7 @@ class Demo:
 
     def stroke_images(self) -> np.ndarray:
         """``bool [S, 100, 100]``, one image per stroke."""
-        return np.stack([raster.render_strokes([s]) for s in self.strokes])
+        return np.stack([geometry.render_strokes([s]) for s in self.strokes])
 
 
 def from_control_points(strokes_ctrl, affine=None) -> Demo:

@@ -14,21 +14,35 @@ def pixel_accuracy(target, drawn) -> float:
     return 1.0 if denom == 0 else tp / denom
 
 
-def _iou_matrix(drawn: np.ndarray, target: np.ndarray) -> np.ndarray:
-    """``[D, S]`` IoU between stroke images ``drawn [D, H, W]`` and ``target [S, H, W]``."""
-    d = drawn.reshape(len(drawn), -1).astype(np.float64)
-    t = target.reshape(len(target), -1).astype(np.float64)
-    inter = d @ t.T
-    union = d.sum(1)[:, None] + t.sum(1)[None] - inter
-    return np.where(union > 0, inter / np.maximum(union, 1), 1.0)
+def stroke_iou(a, b, tol: int = 0) -> np.ndarray:
+    """``[A, B]`` IoU of stroke images ``a [A, H, W]`` and ``b [B, H, W]``.
+
+    With ``tol > 0`` a pixel counts as shared when the other side has ink
+    within ``tol`` pixels (Chebyshev); the intersection is the mean of the two
+    sides' counts, so two renderings of one line score about 1. ``tol=0`` is
+    the exact IoU of the paper. Two empty images score 1.
+    """
+    a = np.asarray(a, bool)
+    b = np.asarray(b, bool)
+    af = a.reshape(len(a), -1).astype(np.float64)
+    bf = b.reshape(len(b), -1).astype(np.float64)
+    if tol:
+        ad = np.stack([_dilate(x, tol) for x in a]).reshape(len(a), -1).astype(np.float64)
+        bd = np.stack([_dilate(x, tol) for x in b]).reshape(len(b), -1).astype(np.float64)
+        inter = (af @ bd.T + ad @ bf.T) / 2
+    else:
+        inter = af @ bf.T
+    union = af.sum(1)[:, None] + bf.sum(1)[None] - inter
+    return np.where(union > 0, inter / np.maximum(union, 1e-9), 1.0)
 
 
-def stroke_accuracy(target_strokes, drawn_strokes) -> float:
+def stroke_accuracy(target_strokes, drawn_strokes, tol: int = 0) -> float:
     """Mean over drawn strokes of the best IoU with any target stroke.
 
     Args:
       target_strokes: ``bool [S, H, W]`` one image per target stroke.
       drawn_strokes: ``bool [D, H, W]`` one image per drawn stroke.
+      tol: pixels of tolerance (:func:`stroke_iou`); 0 is the paper's metric.
 
     Returns:
       The score in [0, 1]; 1.0 if neither has strokes, 0.0 if only one does.
@@ -37,7 +51,49 @@ def stroke_accuracy(target_strokes, drawn_strokes) -> float:
     d = np.asarray(drawn_strokes, bool)
     if len(d) == 0 or len(t) == 0:
         return float(len(d) == len(t))
-    return float(_iou_matrix(d, t).max(1).mean())
+    return float(stroke_iou(d, t, tol).max(1).mean())
+
+
+def _agreement(m: np.ndarray, target_points, drawn_points, iou: float) -> dict:
+    """Order and direction agreement from the ``[S, D]`` target x drawn IoU matrix.
+
+    Each target stroke is matched to the drawn stroke of highest IoU, if at
+    least ``iou``. Keys: ``order`` (pairs of matched targets drawn in the
+    reference's relative order), ``direction`` (matched strokes whose drawn
+    start is nearer the reference start than its end), ``matched``,
+    ``order_all`` (over all pairs; an unmatched stroke counts against every
+    pair it is in; one stroke: 1.0 if matched) and ``exact`` (as many strokes
+    as the reference, all matched to distinct drawn strokes, in order).
+    """
+    n, n_drawn = m.shape
+    if n == 0 or n_drawn == 0:
+        nan = float("nan")
+        return dict(
+            order=nan, direction=nan, matched=0.0, order_all=float(n == n_drawn), exact=n == n_drawn
+        )
+    best = m.argmax(1)
+    ok = m.max(1) >= iou
+    idx = np.flatnonzero(ok)
+    pairs = [(i, j) for a, i in enumerate(idx) for j in idx[a + 1 :]]
+    order = float(np.mean([best[i] < best[j] for i, j in pairs])) if pairs else float("nan")
+    dirs = []
+    for i in idx if target_points is not None else ():
+        tp, dp = np.asarray(target_points[i], float), np.asarray(drawn_points[best[i]], float)
+        dirs.append(np.linalg.norm(dp[0] - tp[0]) <= np.linalg.norm(dp[0] - tp[-1]))
+    if n == 1:
+        order_all = float(ok[0])
+    else:
+        agree = sum(
+            bool(ok[i] and ok[j] and best[i] < best[j]) for i in range(n) for j in range(i + 1, n)
+        )
+        order_all = agree / (n * (n - 1) / 2)
+    return dict(
+        order=order,
+        direction=float(np.mean(dirs)) if dirs else float("nan"),
+        matched=float(ok.mean()),
+        order_all=order_all,
+        exact=bool(n_drawn == n and ok.all() and np.all(np.diff(best) > 0)),
+    )
 
 
 def order_and_direction(target_strokes, target_points, drawn_strokes, drawn_points, iou=0.5):
@@ -56,22 +112,9 @@ def order_and_direction(target_strokes, target_points, drawn_strokes, drawn_poin
     Returns:
       ``(order, direction, matched fraction)``, NaN where undefined.
     """
-    t = np.asarray(target_strokes, bool)
-    d = np.asarray(drawn_strokes, bool)
-    if len(t) == 0 or len(d) == 0:
-        return float("nan"), float("nan"), 0.0
-    m = _iou_matrix(t, d)
-    best = m.argmax(1)
-    ok = m.max(1) >= iou
-    idx = np.flatnonzero(ok)
-    pairs = [(i, j) for a, i in enumerate(idx) for j in idx[a + 1 :]]
-    order = np.mean([best[i] < best[j] for i, j in pairs]) if pairs else float("nan")
-    dirs = []
-    for i in idx:
-        tp, dp = np.asarray(target_points[i], float), np.asarray(drawn_points[best[i]], float)
-        dirs.append(np.linalg.norm(dp[0] - tp[0]) <= np.linalg.norm(dp[0] - tp[-1]))
-    direction = float(np.mean(dirs)) if dirs else float("nan")
-    return float(order), direction, float(ok.mean())
+    m = stroke_iou(target_strokes, drawn_strokes)
+    r = _agreement(m, target_points, drawn_points, iou)
+    return r["order"], r["direction"], r["matched"]
 
 
 def order_all_pairs(target_strokes, drawn_strokes, iou=0.5) -> tuple[float, bool]:
@@ -87,21 +130,8 @@ def order_all_pairs(target_strokes, drawn_strokes, iou=0.5) -> tuple[float, bool
       strokes, in the reference's order. With one reference stroke the
       fraction is 1.0 if it is matched.
     """
-    t = np.asarray(target_strokes, bool)
-    d = np.asarray(drawn_strokes, bool)
-    if len(t) == 0 or len(d) == 0:
-        return float(len(t) == len(d)), len(t) == len(d)
-    m = _iou_matrix(t, d)
-    best = m.argmax(1)
-    ok = m.max(1) >= iou
-    n = len(t)
-    if n == 1:
-        return float(ok[0]), bool(ok[0] and len(d) == 1)
-    agree = sum(
-        bool(ok[i] and ok[j] and best[i] < best[j]) for i in range(n) for j in range(i + 1, n)
-    )
-    exact = bool(len(d) == n and ok.all() and np.all(np.diff(best) > 0))
-    return agree / (n * (n - 1) / 2), exact
+    r = _agreement(stroke_iou(target_strokes, drawn_strokes), None, None, iou)
+    return r["order_all"], r["exact"]
 
 
 def _dilate(img: np.ndarray, r: int) -> np.ndarray:
@@ -129,23 +159,6 @@ def tolerant_pixel_accuracy(target, drawn, tol: int = 1) -> float:
     return (right + covered) / n
 
 
-def tolerant_stroke_iou(a: np.ndarray, b: np.ndarray, tol: int = 1) -> np.ndarray:
-    """``[A, B]`` IoU of stroke images with a ``tol``-pixel tolerance.
-
-    The intersection is the mean of each side's pixels lying within ``tol``
-    of the other side, so two renderings of one line score about 1.
-    """
-    a = np.asarray(a, bool)
-    b = np.asarray(b, bool)
-    ad = np.stack([_dilate(x, tol) for x in a]).reshape(len(a), -1).astype(np.float64)
-    bd = np.stack([_dilate(x, tol) for x in b]).reshape(len(b), -1).astype(np.float64)
-    af = a.reshape(len(a), -1).astype(np.float64)
-    bf = b.reshape(len(b), -1).astype(np.float64)
-    inter = (af @ bd.T + ad @ bf.T) / 2  # each side's pixels near the other, averaged
-    union = af.sum(1)[:, None] + bf.sum(1)[None] - inter
-    return np.where(union > 0, inter / np.maximum(union, 1e-9), 1.0)
-
-
 def score(demos, plan, inputs=None, tol: int = 0) -> dict:
     """Per-character metrics of a plan against demonstrations, averaged.
 
@@ -155,7 +168,7 @@ def score(demos, plan, inputs=None, tol: int = 0) -> dict:
       inputs: ``bool [B, H, W]`` images the plan was made from (default: the
         demonstrations' own targets). Pixel accuracy is against these.
       tol: 0 for the paper's exact metrics; ``tol`` pixels of tolerance
-        (:func:`tolerant_pixel_accuracy`, :func:`tolerant_stroke_iou`) for
+        (:func:`tolerant_pixel_accuracy`, :func:`stroke_iou`) for
         inputs drawn by another rasteriser or pen.
 
     Returns:
@@ -163,7 +176,7 @@ def score(demos, plan, inputs=None, tol: int = 0) -> dict:
       exact_order, direction_agreement, stroke_ratio (drawn / true strokes),
       truncated, n.
     """
-    from jdraw import geometry as raster
+    from jdraw import geometry
     from jdraw.plans import render
 
     drawn = render(plan)
@@ -172,26 +185,20 @@ def score(demos, plan, inputs=None, tol: int = 0) -> dict:
     for b, (d, img, strokes) in enumerate(zip(demos, drawn, plan.strokes)):
         ink = d.target if inputs is None else np.asarray(inputs[b], bool)
         per = (
-            np.stack([raster.render_strokes([s]) for s in strokes])
+            np.stack([geometry.render_strokes([s]) for s in strokes])
             if strokes
             else np.zeros((0, *img.shape), bool)
         )
         tgt = d.stroke_images()
-        if tol:
-            acc["pixel"].append(tolerant_pixel_accuracy(ink, img, tol))
-            m = tolerant_stroke_iou(per, tgt, tol) if len(per) else np.zeros((0, len(tgt)))
-            acc["stroke"].append(float(m.max(1).mean()) if len(per) else float(len(tgt) == 0))
-            # Match on tolerant IoU: replace drawn images by the reference stroke they fit.
-            o, di, oa, ex = _order_tolerant(m, d.strokes, strokes)
-        else:
-            acc["pixel"].append(pixel_accuracy(ink, img))
-            acc["stroke"].append(stroke_accuracy(tgt, per))
-            o, di, _ = order_and_direction(tgt, d.strokes, per, strokes)
-            oa, ex = order_all_pairs(tgt, per)
-        acc["order"].append(o)
-        acc["direction"].append(di)
-        acc["order_all"].append(oa)
-        acc["exact"].append(ex)
+        pixel = tolerant_pixel_accuracy if tol else pixel_accuracy
+        acc["pixel"].append(pixel(ink, img, tol) if tol else pixel(ink, img))
+        m = stroke_iou(per, tgt, tol) if len(per) and len(tgt) else np.zeros((len(per), len(tgt)))
+        acc["stroke"].append(
+            float(m.max(1).mean()) if len(per) and len(tgt) else float(len(per) == len(tgt))
+        )
+        r = _agreement(m.T, d.strokes, strokes, 0.5)
+        for k in ("order", "direction", "order_all", "exact"):
+            acc[k].append(r[k])
         acc["ratio"].append(len(strokes) / max(len(d.strokes), 1))
     mean = lambda v: (
         float(np.nanmean(v)) if np.isfinite(np.asarray(v, float)).any() else float("nan")
@@ -207,27 +214,3 @@ def score(demos, plan, inputs=None, tol: int = 0) -> dict:
         "truncated": float(np.mean(plan.truncated)),
         "n": len(demos),
     }
-
-
-def _order_tolerant(m: np.ndarray, target_points, drawn_points, iou: float = 0.5):
-    """Order/direction metrics from a ``[D, S]`` (drawn x target) tolerant IoU matrix."""
-    n = m.shape[1]
-    if m.shape[0] == 0:
-        return float("nan"), float("nan"), float(n == 0), n == 0
-    best = m.argmax(0)
-    ok = m.max(0) >= iou
-    idx = np.flatnonzero(ok)
-    pairs = [(i, j) for a, i in enumerate(idx) for j in idx[a + 1 :]]
-    order = float(np.mean([best[i] < best[j] for i, j in pairs])) if pairs else float("nan")
-    dirs = []
-    for i in idx:
-        tp, dp = np.asarray(target_points[i], float), np.asarray(drawn_points[best[i]], float)
-        dirs.append(np.linalg.norm(dp[0] - tp[0]) <= np.linalg.norm(dp[0] - tp[-1]))
-    direction = float(np.mean(dirs)) if dirs else float("nan")
-    if n == 1:
-        return order, direction, float(ok[0]), bool(ok[0] and m.shape[0] == 1)
-    agree = sum(
-        bool(ok[i] and ok[j] and best[i] < best[j]) for i in range(n) for j in range(i + 1, n)
-    )
-    exact = bool(m.shape[0] == n and ok.all() and np.all(np.diff(best) > 0))
-    return order, direction, agree / (n * (n - 1) / 2), exact

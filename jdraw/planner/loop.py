@@ -19,6 +19,7 @@ from typing import Any, NamedTuple
 import jax
 import jax.numpy as jnp
 
+from jdraw import geometry
 from jdraw import state as S
 
 
@@ -108,7 +109,7 @@ def run(policy: Policy, ctx: Any, pstate: Any, target, labels, limits: Limits) -
             ok = S.allowed_moves(target, pen)
             lift = lift | ~jnp.any(ok)
             idx = jnp.argmax(jnp.where(ok, scores, -jnp.inf))
-            d = jnp.asarray(S.MOVES, jnp.int32)[idx]
+            d = jnp.asarray(geometry.MOVES, jnp.int32)[idx]
             v2, pen2, n_new = S.apply_move(visited, pen, d)
             l2, _, _ = S.apply_move(last, pen, d)
             a2, n2 = write(actions, n, jnp.array([d[0], d[1], 1], jnp.int32))
@@ -180,7 +181,7 @@ def replay_policy() -> Policy:
         starts, moves, nm, s, k = pst
         lift = k >= nm[s]
         d = moves[s, jnp.minimum(k, moves.shape[1] - 1)]
-        scores = jax.nn.one_hot(S.move_index_jnp(d), 25)
+        scores = jax.nn.one_hot(geometry.move_index(d), 25)
         nxt = (starts, moves, nm, jnp.where(lift, s + 1, s), jnp.where(lift, 0, k + 1))
         return scores, lift, lst, nxt
 

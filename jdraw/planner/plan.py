@@ -11,14 +11,13 @@ import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
-from jdraw import geometry as raster
-from jdraw import state, validate
+from jdraw import geometry, state, validate
 from jdraw.model import bundle
 from jdraw.planner import loop as planner
 from jdraw.planner import slots
 from jdraw.plans import Plan, strokes_from_actions
 
-CANVAS = state.CANVAS
+CANVAS = geometry.CANVAS
 _TRACES = {"plan": 0}  # counts traces of the planning function (tests check it)
 
 
@@ -257,7 +256,7 @@ def plan(
     # after canonicalising): judged from the rendered actions, not the planner's
     # `visited` (a jump marks its pixel visited before the dot is drawn).
     truncated = np.array(
-        [(t & ~raster.render_strokes(s, t.shape)).any() for t, s in zip(targets, strokes)], bool
+        [(t & ~geometry.render_strokes(s, t.shape)).any() for t, s in zip(targets, strokes)], bool
     )
     result = Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=truncated)
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None

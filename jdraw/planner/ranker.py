@@ -27,7 +27,7 @@ import jax
 import numpy as np
 from flax import nnx
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.plans import actions_from_strokes
 
 STROKE_FEATURES = 20
@@ -39,7 +39,7 @@ def _pixels(points) -> np.ndarray:
     p = np.rint(np.asarray(points, float)).astype(np.int64).reshape(-1, 2)
     d = np.diff(p, axis=0)
     if len(d) == 0 or np.abs(d).max() > 2:
-        return raster.polyline_pixels(p)
+        return geometry.polyline_pixels(p)
     # Local moves (|d| <= 2) skip at most one pixel: the line rule's midpoint.
     mid = p[:-1] + np.sign(d) * (np.abs(d) // 2)
     path = np.stack([mid, p[1:]], 1).reshape(-1, 2)
@@ -49,7 +49,7 @@ def _pixels(points) -> np.ndarray:
     return path[keep]
 
 
-def stroke_masks(strokes, shape=(raster.CANVAS, raster.CANVAS)) -> np.ndarray:
+def stroke_masks(strokes, shape=(geometry.CANVAS, geometry.CANVAS)) -> np.ndarray:
     """``bool [S, H, W]`` one image per stroke (as :func:`jdraw.geometry.render_strokes`)."""
     out = np.zeros((len(strokes), *shape), bool)
     for k, s in enumerate(strokes):

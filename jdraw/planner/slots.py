@@ -29,6 +29,7 @@ from typing import Any, NamedTuple
 import jax
 import jax.numpy as jnp
 
+from jdraw import geometry
 from jdraw import state as S
 from jdraw.planner.loop import Limits, Policy
 
@@ -160,7 +161,7 @@ def move(policy: Policy, ctx, s: Image, limits: Limits) -> Image:
     )
     ok = S.allowed_moves(s.target, s.pen)
     lift = lift | ~jnp.any(ok)
-    d = jnp.asarray(S.MOVES, jnp.int32)[jnp.argmax(jnp.where(ok, scores, -jnp.inf))]
+    d = jnp.asarray(geometry.MOVES, jnp.int32)[jnp.argmax(jnp.where(ok, scores, -jnp.inf))]
     visited, pen, n_new = S.apply_move(s.visited, s.pen, d)
     last, _, _ = S.apply_move(s.last, s.pen, d)
     actions, n = _write(s.actions, s.n, jnp.stack([d[0], d[1], 1]), ~lift)

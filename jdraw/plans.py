@@ -32,6 +32,21 @@ class Plan:
     def __len__(self) -> int:
         return len(self.strokes)
 
+    @classmethod
+    def from_actions(cls, actions, lengths, truncated=None, targets=None) -> Plan:
+        """The plan that ``actions [B, T, 3]`` (first ``lengths [B]`` rows) draw.
+
+        ``truncated`` is given, or judged against ``targets [B, H, W]``: true
+        exactly where ink the actions do not draw remains.
+        """
+        actions, lengths = np.asarray(actions), np.asarray(lengths)
+        strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]
+        if truncated is None:
+            truncated = [
+                (t & ~geometry.render_strokes(s, t.shape)).any() for t, s in zip(targets, strokes)
+            ]
+        return cls(strokes, actions, lengths, np.asarray(truncated, bool).reshape(len(strokes)))
+
 
 def strokes_from_actions(actions: np.ndarray, length: int, start=(0, 0)) -> list[np.ndarray]:
     """Replays ``actions[:length]`` (``[T, 3]`` dx, dy, touch) into strokes.

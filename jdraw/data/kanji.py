@@ -175,7 +175,11 @@ def make_split(codes, n_val: int = 1000, n_test: int = 1000) -> dict:
 
 
 def split_indices(ks: KanjiSet, split: str) -> np.ndarray:
-    """Indices into ``ks`` of the ``train``, ``val`` or ``test`` split."""
+    """Indices into ``ks`` of the ``train``, ``val`` or ``test`` split.
+
+    The split is ``jdraw/data/split.json``, written once by :func:`make_split`
+    from KanjiVG's code points, so it does not change when KanjiVG grows.
+    """
     spec = json.loads(SPLIT_FILE.read_text())
     held = {int(c, 16) for c in spec["test"]} | {int(c, 16) for c in spec["val"]}
     is_variant = np.array(["-" in str(n) for n in ks.names])

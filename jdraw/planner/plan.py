@@ -15,7 +15,7 @@ from jdraw import geometry, state, validate
 from jdraw.model import bundle
 from jdraw.planner import loop as planner
 from jdraw.planner import slots
-from jdraw.plans import Plan, strokes_from_actions
+from jdraw.plans import Plan
 
 CANVAS = geometry.CANVAS
 _TRACES = {"plan": 0}  # counts traces of the planning function (tests check it)
@@ -249,16 +249,10 @@ def plan(
         graphdef, st = nnx.split(model)
         fn = _planner(graphdef, limits, local_encoding, kind)
         out = fn(st, jnp.asarray(targets), jnp.asarray(labels))
-    actions = np.asarray(out.actions)
-    lengths = np.asarray(out.length)
-    strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]
     # Truncated means exactly "ink the actions do not draw remains" (of the ink planned,
     # after canonicalising): judged from the rendered actions, not the planner's
     # `visited` (a jump marks its pixel visited before the dot is drawn).
-    truncated = np.array(
-        [(t & ~geometry.render_strokes(s, t.shape)).any() for t, s in zip(targets, strokes)], bool
-    )
-    result = Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=truncated)
+    result = Plan.from_actions(out.actions, out.length, targets=targets)
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"
@@ -295,8 +289,4 @@ def replay(demos, *, max_steps: int | None = None) -> Plan:
     targets = np.stack([d.target for d in demos])
     labels = np.stack([state.component_labels(t) for t in targets])
     out = _replayer(limits)(starts, moves, n_moves, targets, labels)
-    actions, lengths = np.asarray(out.actions), np.asarray(out.length)
-    strokes = [strokes_from_actions(a, n) for a, n in zip(actions, lengths)]
-    return Plan(
-        strokes=strokes, actions=actions, lengths=lengths, truncated=np.asarray(out.truncated)
-    )
+    return Plan.from_actions(out.actions, out.length, truncated=out.truncated)

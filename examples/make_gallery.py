@@ -20,17 +20,21 @@ from __future__ import annotations
 
 import argparse
 import pathlib
+import sys
 import time
 
 import cv2
 import numpy as np
 
-from jdraw.images import image as im
-from jdraw.io import formats
-from jdraw.io import pictures as viz
+from jdraw.images.load import load_image
+from jdraw.io import pictures
+from jdraw.io.outputs import write_text
+from jdraw.io.svg import to_svg
 from jdraw.tiling import plan_image as tiling
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # the photo-like inputs are the tests' (tests/synthetic.py)
+from tests.synthetic import centreline_scores, photo_like, text_centrelines  # noqa: E402
 
 
 def sketch_centrelines() -> tuple[list[np.ndarray], tuple[int, int]]:
@@ -64,9 +68,9 @@ def sketch_centrelines() -> tuple[list[np.ndarray], tuple[int, int]]:
 
 EXAMPLES = {
     # name: (centrelines and shape, stroke width px, light ink)
-    "hello": (lambda: im.text_centrelines("hello", 5.0), 10, False),
+    "hello": (lambda: text_centrelines("hello", 5.0), 10, False),
     "sketch": (sketch_centrelines, 7, True),
-    "sentence": (lambda: im.text_centrelines("The quick brown fox jumps", 2.2), 4, False),
+    "sentence": (lambda: text_centrelines("The quick brown fox jumps", 2.2), 4, False),
 }
 
 
@@ -83,13 +87,11 @@ def sweep(planner=None) -> None:
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     scores = []
     for text, font_scale, width in SWEEP:
-        lines, shape = im.text_centrelines(text, font_scale)
+        lines, shape = text_centrelines(text, font_scale)
         for light in (False, True):
-            photo = im.photo_like(
-                lines, shape, width=width, light_ink=light, gradient=0.6, noise=0.08
-            )
+            photo = photo_like(lines, shape, width=width, light_ink=light, gradient=0.6, noise=0.08)
             result = tiling.plan_image(photo, planner=planner, progress=False)
-            p, r = im.centreline_scores(result.strokes, lines, 4.0)
+            p, r = centreline_scores(result.strokes, lines, 4.0)
             scores.append((p, r))
             h, w = shape
             ink = "light" if light else "dark"
@@ -114,20 +116,20 @@ def main() -> None:
     for name in args.only or EXAMPLES:
         make, width, light = EXAMPLES[name]
         lines, shape = make()
-        photo = im.photo_like(lines, shape, width=width, light_ink=light, gradient=0.5, noise=0.06)
+        photo = photo_like(lines, shape, width=width, light_ink=light, gradient=0.5, noise=0.06)
         path = img_dir / f"{name}.jpg"
         cv2.imwrite(str(path), photo, [cv2.IMWRITE_JPEG_QUALITY, 80])
         t0 = time.perf_counter()
-        result = tiling.plan_image(im.load_image(path), progress=True)
+        result = tiling.plan_image(load_image(path), progress=True)
         dt = time.perf_counter() - t0
-        precision, recall = im.centreline_scores(result.strokes, lines, 4.0)
+        precision, recall = centreline_scores(result.strokes, lines, 4.0)
         scale = min(1.5, 700 / shape[1])
-        viz.draw_strokes_png(
+        pictures.draw_strokes_png(
             result.prepared.ink, result.strokes, out_dir / f"{name}.png", scale=scale
         )
         if name == "hello":
-            svg = formats.to_svg(result.strokes, shape, width_mm=120, stroke_width=3)
-            formats.write_text(svg, out_dir / f"{name}.svg")
+            svg = to_svg(result.strokes, shape, width_mm=120, stroke_width=3)
+            write_text(svg, out_dir / f"{name}.svg")
         h, w = shape
         print(
             f"| {name} | {w}x{h} | {width} | {len(result.tiles)} | {len(result.strokes)} | "

@@ -15,11 +15,15 @@ over the true length (above 1 means the pen retraced).
 from __future__ import annotations
 
 import argparse
+import pathlib
+import sys
 
 import numpy as np
 
-from jdraw.images import image as im
 from jdraw.tiling import plan_image as tiling
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from tests.synthetic import centreline_scores, photo_like  # noqa: E402  (tests/synthetic.py)
 
 
 def lines(seed: int, waves: int):
@@ -46,9 +50,9 @@ def main() -> None:
     print("| image | px | tiles | strokes | border joins | breaks | lifts removed | P / R | len |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for name, ref, shape, width, light in lines(args.seed, args.waves):
-        img = im.photo_like(ref, shape, width=width, light_ink=light, gradient=0.6, noise=0.08)
+        img = photo_like(ref, shape, width=width, light_ink=light, gradient=0.6, noise=0.08)
         r = tiling.plan_image(img, progress=False)
-        p, rc = im.centreline_scores(r.strokes, ref, 4.0)
+        p, rc = centreline_scores(r.strokes, ref, 4.0)
         true_len = sum(np.hypot(*np.diff(s, axis=0).T).sum() for s in ref)
         print(
             f"| {name} | {shape[1]}x{shape[0]} | {len(r.tiles)} | {len(r.strokes)} | "

@@ -8,5 +8,5 @@ from jdraw.planner.plan import load_model as load_model
 from jdraw.planner.plan import plan as plan
 from jdraw.plans import Plan as Plan
 from jdraw.plans import render as render
-from jdraw.tiling import plan_image as plan_image
 from jdraw.tiling.plan_image import ImagePlan as ImagePlan
+from jdraw.tiling.plan_image import plan_image as plan_image

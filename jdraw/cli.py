@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import time
 import traceback
 
 from jdraw import validate
-from jdraw.io import formats, stats
+from jdraw.io.gcode import PRESETS
 
 _DESCRIPTION = """\
 Plan how to draw a picture with a pen: a photo or scan of handwriting, a
@@ -163,7 +164,7 @@ def _parser() -> argparse.ArgumentParser:
     gc = d.add_argument_group("G-code")
     gc.add_argument(
         "--preset",
-        choices=sorted(formats.PRESETS),
+        choices=sorted(PRESETS),
         default="zaxis",
         help="pen lift: zaxis (G0 Z5 / G1 Z0), servo (M3 S90 down, M5 up, with a dwell), "
         "servo-s (M3 S90 down, M3 S30 up); default: zaxis",
@@ -235,23 +236,33 @@ def _check(args) -> None:
         api.load_model(validate.checkpoint(args.checkpoint))
 
 
+def _robot():
+    """``jdraw.robot``, imported with stray prints sent to stderr.
+
+    Importing MJX prints a notice about its optional Warp backend to stdout,
+    and the command's stdout is for results.
+    """
+    with contextlib.redirect_stdout(sys.stderr):
+        from jdraw import robot
+    return robot
+
+
 def _draw(args) -> int:
-    from jdraw.images import image as jimage
+    from jdraw.images import load
+    from jdraw.io import outputs
     from jdraw.tiling import plan_image as tiling
 
-    outputs = [args.svg, args.gcode, args.json, args.png, args.gif, args.trajectory]
+    files = {k: getattr(args, k) for k in ("svg", "gcode", "json", "png", "gif")}
     _check(args)
     faults = None
     if args.robot:
-        from jdraw.robot.faults import Faults
-
         try:
-            faults = Faults.parse(args.faults)
+            faults = _robot().Faults.parse(args.faults)
         except ValueError as e:
             raise validate.InputError(str(e)) from e
     t0 = time.perf_counter()
     try:
-        img = jimage.load_image(args.image)
+        img = load.load_image(args.image)
         result = tiling.plan_image(
             img,
             checkpoint=args.checkpoint,
@@ -260,73 +271,35 @@ def _draw(args) -> int:
             min_gap=args.min_gap,
             progress=not args.no_progress,
         )
-    except jimage.BlankImageError as e:
+    except load.BlankImageError as e:
         return _fail(f"{args.image}: {e}; nothing to draw")
-    except jimage.ImageError as e:
+    except load.ImageError as e:
         return _fail(str(e))
     shape, strokes = result.shape, result.strokes
     try:
-        plot = stats.plot_stats(
-            strokes,
-            shape,
+        plot = outputs.write_outputs(
+            result,
+            **files,
             width_mm=args.width_mm,
             height_mm=args.height_mm,
             preset=args.preset,
+            origin_mm=tuple(args.origin_mm),
             feed=args.feed,
             travel_feed=args.travel_feed,
             pen_up=args.pen_up,
             pen_down=args.pen_down,
             z_up=args.z_up,
             z_down=args.z_down,
-        )
-        if args.svg:
-            svg = formats.to_svg(strokes, shape, width_mm=args.width_mm, height_mm=args.height_mm)
-            formats.write_text(svg, args.svg)
-        if args.gcode:
-            overrides = {
-                "feed": args.feed,
-                "travel_feed": args.travel_feed,
-                "pen_up": args.pen_up,
-                "pen_down": args.pen_down,
-                "z_up": args.z_up,
-                "z_down": args.z_down,
-            }
-            code = formats.to_gcode(
-                strokes,
-                shape,
-                preset=args.preset,
-                width_mm=args.width_mm,
-                height_mm=args.height_mm,
-                origin_mm=tuple(args.origin_mm),
-                **overrides,
-            )
-            formats.write_text(code, args.gcode)
-        if args.json:
-            data = formats.to_json(strokes, shape)
-            data["stats"] = plot.as_dict()
-            formats.write_json(data, args.json)
-        if args.png:
-            from jdraw.io import pictures as viz
-
-            box = viz.ink_box(result.prepared.ink, strokes)
-            scale = min(4.0, 800.0 / max(box[2] - box[0], box[3] - box[1]))
-            viz.draw_strokes_png(result.prepared.ink, strokes, args.png, scale=scale, crop=box)
-        if args.gif:
-            from jdraw.io import pictures as viz
-
-            viz.animate(result, args.gif)
+        ).stats
     except (KeyError, ValueError, IndexError) as e:
         return _fail(f"bad G-code template or size: {e}")
     except OSError as e:
         return _fail(f"cannot write output: {e}")
     arm_msg, status = "", 0
     if args.trajectory:
-        from jdraw import robot
-
-        options = robot.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
-        report, traj = robot.image_trajectory(strokes, shape, options)
+        _robot()
         try:
-            formats.write_json(traj, args.trajectory)
+            report, traj = outputs.write_trajectory(result, args.trajectory, args.sheet_mm)
         except OSError as e:
             return _fail(f"cannot write output: {e}")
         ok = bool(report.reachable[0])
@@ -338,10 +311,9 @@ def _draw(args) -> int:
         if not ok:
             status = 1
     if args.robot:
-        from jdraw.robot import closed_loop, options
-
-        opts = options.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
-        res = closed_loop.image_closed_loop(strokes, shape, faults, args.rounds, opts)
+        robot = _robot()
+        opts = robot.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
+        res = robot.closed_loop.image_closed_loop(strokes, shape, faults, args.rounds, opts)
         arm_msg = "\n".join(filter(None, [arm_msg, res.summary()]))
     h, w = shape
     msg = (
@@ -360,7 +332,7 @@ def _draw(args) -> int:
             "`offending`); the trajectory was written but must not be run",
             file=sys.stderr,
         )
-    if not any(outputs) and not args.robot:
+    if not any(files.values()) and not args.trajectory and not args.robot:
         print(
             "no output requested: add --svg, --gcode, --json, --png, --gif or --trajectory",
             file=sys.stderr,
@@ -370,7 +342,7 @@ def _draw(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Runs the command line; returns the exit status (see the help's epilog)."""
-    from jdraw.images import image
+    from jdraw.images import load
     from jdraw.model import bundle
 
     args = _parser().parse_args(argv)
@@ -379,7 +351,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "draw":
             return _draw(args)
         return 2
-    except (validate.InputError, image.ImageError, bundle.BundleError) as e:
+    except (validate.InputError, load.ImageError, bundle.BundleError) as e:
         if debug:
             traceback.print_exc()
         return _fail(str(e))

@@ -10,18 +10,19 @@ import numpy as np
 import pytest
 from PIL import Image
 
-import jdraw
 from jdraw import cli
-from jdraw.images import image as im
-from jdraw.io import formats
+from jdraw.io.gcode import PRESETS
+from jdraw.robot.ros import joint_trajectory
 from jdraw.tiling import plan_image as tiling
+from tests.doubles import trace_planner
+from tests.synthetic import centreline_scores, photo_like, text_centrelines
 
 
 @pytest.fixture
 def word_photo(tmp_path):
-    lines, shape = im.text_centrelines("hi", 3.0)
+    lines, shape = text_centrelines("hi", 3.0)
     path = tmp_path / "word.jpg"
-    cv2.imwrite(str(path), im.photo_like(lines, shape, width=6, gradient=0.5, noise=0.05))
+    cv2.imwrite(str(path), photo_like(lines, shape, width=6, gradient=0.5, noise=0.05))
     return path, lines, shape
 
 
@@ -35,7 +36,7 @@ def test_help_explains_every_option(capsys):
         for flag in action.option_strings:
             assert flag in text
         assert action.help, action.dest
-    for preset in formats.PRESETS:
+    for preset in PRESETS:
         assert preset in text
 
 
@@ -56,7 +57,7 @@ def test_errors_are_clear(tmp_path, capsys):
 
 
 def test_draw_writes_every_format(word_photo, tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
     path, lines, shape = word_photo
     out = {ext: tmp_path / f"out.{ext}" for ext in ("svg", "gcode", "json", "png", "gif")}
     argv = ["draw", str(path), "--no-progress", "--preset", "servo", "--width-mm", "80"]
@@ -70,7 +71,7 @@ def test_draw_writes_every_format(word_photo, tmp_path, monkeypatch, capsys):
     data = json.loads(out["json"].read_text())
     assert len(polys) == len(data["strokes"]) > 0
     strokes = [np.array(s) for s in data["strokes"]]
-    precision, recall = im.centreline_scores(strokes, lines, 4.0)
+    precision, recall = centreline_scores(strokes, lines, 4.0)
     assert precision >= 0.95 and recall >= 0.95
     assert out["gcode"].read_text().count("M3 S90") == len(strokes)
     png = cv2.imread(str(out["png"]))
@@ -90,7 +91,7 @@ def test_draw_with_the_real_planner(word_photo, tmp_path):
         for poly in polys
     ]
     # Whatever the model's stroke order, the plan covers the ink on its centreline.
-    precision, recall = im.centreline_scores(strokes, lines, 4.0)
+    precision, recall = centreline_scores(strokes, lines, 4.0)
     assert precision >= 0.95 and recall >= 0.95
 
 
@@ -103,10 +104,10 @@ def test_module_entry_point_runs():
 
 def test_trajectory_for_the_arm(tmp_path, monkeypatch, capsys):
     """``--trajectory``: the simulated arm draws the strokes; ROS-shaped joint path out."""
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
     path = tmp_path / "corner.png"  # an L
     corner = np.array([[20.0, 20], [20, 100], [80, 100]])
-    cv2.imwrite(str(path), im.photo_like([corner], (120, 100)))
+    cv2.imwrite(str(path), photo_like([corner], (120, 100)))
     out = tmp_path / "arm.json"
     argv = ["draw", str(path), "--no-progress", "--trajectory", str(out)]
     assert cli.main(argv) == 0
@@ -127,7 +128,7 @@ def test_trajectory_out_of_reach_is_an_error(word_photo, tmp_path, monkeypatch, 
 
     from jdraw import robot
 
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
     seen = {}
 
     def unreachable(strokes, shape, options):
@@ -135,7 +136,7 @@ def test_trajectory_out_of_reach_is_an_error(word_photo, tmp_path, monkeypatch, 
         report = SimpleNamespace(
             reachable=np.array([False]), iou=np.array([0.2]), drawing_time_s=np.array([9.0])
         )
-        return report, formats.joint_trajectory(["j1"], [0.0, 0.1], [[0.0], [0.1]])
+        return report, joint_trajectory(["j1"], [0.0, 0.1], [[0.0], [0.1]])
 
     monkeypatch.setattr(robot, "image_trajectory", unreachable)
     path, _, _ = word_photo
@@ -166,7 +167,7 @@ def test_help_states_defaults_and_gif_input(tmp_path, monkeypatch, capsys, word_
     text = " ".join(capsys.readouterr().out.split())
     assert f"(default: {planner.Limits.max_steps})" in text
     assert "GIF" in text and "100x100 tiles" in text and '"tiles"' in text
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
     path, lines, shape = word_photo
     gif = tmp_path / "word.gif"
     Image.open(path).save(gif)

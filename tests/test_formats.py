@@ -3,10 +3,17 @@
 import json
 import xml.etree.ElementTree as ET
 
+import cv2
 import numpy as np
 import pytest
 
-from jdraw.io import formats
+from jdraw.io.gcode import PRESETS, PlotterPreset, to_gcode
+from jdraw.io.outputs import write_outputs
+from jdraw.io.plan_json import to_json
+from jdraw.io.svg import to_svg
+from jdraw.robot.ros import joint_trajectory, joint_trajectory_from_report
+from jdraw.tiling.plan_image import plan_image
+from tests.doubles import trace_planner
 
 STROKES = [
     np.array([[10.0, 20.0], [30.5, 20.0], [30.5, 45.25]]),
@@ -18,7 +25,7 @@ SVG = "{http://www.w3.org/2000/svg}"
 
 
 def test_svg_polylines_in_input_pixels():
-    root = ET.fromstring(formats.to_svg(STROKES, SHAPE).encode())
+    root = ET.fromstring(to_svg(STROKES, SHAPE).encode())
     assert root.tag == SVG + "svg"
     assert root.get("viewBox") == "0 0 120 80"
     assert (root.get("width"), root.get("height")) == ("120", "80")
@@ -31,7 +38,7 @@ def test_svg_polylines_in_input_pixels():
 
 
 def test_svg_physical_size_keeps_aspect_and_loads_in_svgpathtools(tmp_path):
-    text = formats.to_svg(STROKES, SHAPE, width_mm=150)
+    text = to_svg(STROKES, SHAPE, width_mm=150)
     root = ET.fromstring(text.encode())
     assert (root.get("width"), root.get("height")) == ("150mm", "100mm")
     assert root.get("viewBox") == "0 0 120 80"
@@ -44,7 +51,7 @@ def test_svg_physical_size_keeps_aspect_and_loads_in_svgpathtools(tmp_path):
     assert paths[0].start == complex(10, 20) and paths[0].end == complex(30.5, 45.25)
 
 
-def _pen_down_paths(gcode: str, preset: formats.PlotterPreset):
+def _pen_down_paths(gcode: str, preset: PlotterPreset):
     """Interprets G-code with pygcode and returns the polylines drawn with the pen down."""
     from pygcode import Line, Machine
 
@@ -80,10 +87,10 @@ def _pen_down_paths(gcode: str, preset: formats.PlotterPreset):
     return drawn
 
 
-@pytest.mark.parametrize("name", sorted(formats.PRESETS))
+@pytest.mark.parametrize("name", sorted(PRESETS))
 def test_gcode_parses_and_draws_the_strokes(name):
-    preset = formats.PRESETS[name]
-    code = formats.to_gcode(STROKES, SHAPE, preset=name, width_mm=60)
+    preset = PRESETS[name]
+    code = to_gcode(STROKES, SHAPE, preset=name, width_mm=60)
     assert "G21" in code and "G90" in code
     drawn = _pen_down_paths(code, preset)
     assert len(drawn) == len(STROKES)
@@ -94,17 +101,17 @@ def test_gcode_parses_and_draws_the_strokes(name):
 
 
 def test_gcode_feeds_and_templates_override():
-    code = formats.to_gcode(
+    code = to_gcode(
         STROKES, SHAPE, preset="servo", feed=2500, travel_feed=6000, pen_down="M3 S40\\nG4 P0.3"
     )
     assert "F2500" in code and "G1 X" in code and "F6000" in code
     assert code.count("M3 S40") == len(STROKES) and code.count("G4 P0.3") == len(STROKES)
     with pytest.raises(ValueError, match="unknown field"):
-        formats.to_gcode(STROKES, SHAPE, pen_up="G0 Z{nope}")
+        to_gcode(STROKES, SHAPE, pen_up="G0 Z{nope}")
 
 
 def test_json_strokes_and_pen_up_moves():
-    d = json.loads(json.dumps(formats.to_json(STROKES, SHAPE)))
+    d = json.loads(json.dumps(to_json(STROKES, SHAPE)))
     assert (d["width"], d["height"], d["units"]) == (120, 80, "px")
     assert len(d["strokes"]) == 3 and d["strokes"][1] == [[60.0, 5.0]]
     pens = [m["pen"] for m in d["moves"]]
@@ -121,18 +128,18 @@ def test_joint_trajectory_shape_and_time_split():
     names = ["shoulder", "elbow"]
     t = np.array([0.0, 0.5, 1.25, 1.9999999999, 3.0])
     q = np.arange(10.0).reshape(5, 2)
-    msg = formats.joint_trajectory(names, t, q, velocities=q * 0.1)
+    msg = joint_trajectory(names, t, q, velocities=q * 0.1)
     assert msg["joint_names"] == names and len(msg["points"]) == 5
     p = msg["points"][2]
     assert p["positions"] == [4.0, 5.0] and p["velocities"] == pytest.approx([0.4, 0.5])
     assert p["time_from_start"] == {"sec": 1, "nanosec": 250_000_000}
     assert msg["points"][3]["time_from_start"] == {"sec": 2, "nanosec": 0}
     json.dumps(msg)  # plain JSON types only
-    assert formats.joint_trajectory(names, t, q)["points"][0]["velocities"] == []
+    assert joint_trajectory(names, t, q)["points"][0]["velocities"] == []
     with pytest.raises(ValueError):
-        formats.joint_trajectory(names, t, q[:, :1])
+        joint_trajectory(names, t, q[:, :1])
     with pytest.raises(ValueError):
-        formats.joint_trajectory(names, t[::-1], q)
+        joint_trajectory(names, t[::-1], q)
 
 
 def test_joint_trajectory_from_a_robot_report():
@@ -141,8 +148,22 @@ def test_joint_trajectory_from_a_robot_report():
     t = np.arange(6) * 0.01
     q = np.stack([np.zeros((6, 7)), np.outer(t, np.arange(7.0))])  # [B=2, T, J]
     valid = np.array([[True] * 6, [False, True, True, True, True, False]])
-    msg = formats.joint_trajectory_from_report(SimpleNamespace(t=t, q_ref=q, valid=valid), index=1)
+    msg = joint_trajectory_from_report(SimpleNamespace(t=t, q_ref=q, valid=valid), index=1)
     assert msg["joint_names"] == [f"joint{i}" for i in range(1, 8)] and len(msg["points"]) == 4
     assert msg["points"][0]["time_from_start"] == {"sec": 0, "nanosec": 0}
     assert msg["points"][1]["time_from_start"] == {"sec": 0, "nanosec": 10_000_000}
     np.testing.assert_allclose(msg["points"][2]["velocities"], np.arange(7.0))
+
+
+def test_write_outputs_writes_what_is_asked(tmp_path):
+    """What ``jdraw draw --svg --json`` writes, from a notebook: one call."""
+    img = np.full((60, 90), 255, np.uint8)
+    cv2.line(img, (10, 30), (80, 30), 0, 5)
+    result = plan_image(img, planner=trace_planner, progress=False)
+    written = write_outputs(result, svg=tmp_path / "a.svg", json=tmp_path / "a.json", width_mm=90)
+    assert set(written.paths) == {"svg", "json"}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "a.svg"]
+    assert (tmp_path / "a.svg").read_text() == to_svg(result.strokes, result.shape, width_mm=90)
+    data = json.loads((tmp_path / "a.json").read_text())
+    assert data["stats"] == written.stats.as_dict() and written.stats.units == "mm"
+    assert data["strokes"] == to_json(result.strokes, result.shape)["strokes"]

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 import jdraw
 from jdraw import validate
-from jdraw.images import image as im
+from jdraw.images.load import BlankImageError
 from jdraw.plans import render
 from jdraw.tiling import plan_image as tiling
 
@@ -154,7 +154,7 @@ def photos(draw):
 def test_plan_image_valid(image):
     try:
         r = tiling.plan_image(image, max_steps=MAX_STEPS, progress=False)
-    except im.BlankImageError:
+    except BlankImageError:
         return
     h, w = image.shape[:2]
     reach = int(np.ceil(0.75 / r.scale + 2))

@@ -7,7 +7,7 @@ import pytest
 
 import jdraw
 from jdraw import geometry as raster
-from jdraw.robot import closed_loop, faults, look, model, trajectory
+from jdraw.robot import closed_loop, faults, look, redraw, scene, trajectory
 from jdraw.robot.options import RobotOptions
 
 POSE_TOL_MM = 0.5  # registered sheet offset vs the simulated one
@@ -95,7 +95,7 @@ def test_register_recovers_shift_and_rotation():
 
 def test_clip_never_leaves_allowed_pixels():
     allowed = raster.render_strokes([np.array([[10.0, 10.0], [60.0, 10.0]])])
-    strokes = closed_loop.clip_to([np.array([[0.0, 10.0], [90.0, 10.0], [90.0, 50.0]])], allowed)
+    strokes = redraw.clip_to([np.array([[0.0, 10.0], [90.0, 10.0], [90.0, 50.0]])], allowed)
     drawn = raster.render_strokes(strokes)
     assert drawn.any() and not (drawn & ~allowed).any()
 
@@ -164,7 +164,7 @@ def test_faults_off_draws_like_verify(clean):
     plain = jdraw.robot.verify(PLAN)
     np.testing.assert_array_equal(plain.drawn, clean.reports[0].drawn)
     assert dataclasses.asdict(plain.faults) == dataclasses.asdict(faults.Faults())
-    assert model.N_ARM == len(plain.fault_log[0]["joint_bias_rad"])
+    assert scene.N_ARM == len(plain.fault_log[0]["joint_bias_rad"])
 
 
 def test_cli_rejects_bad_faults(capsys):

@@ -8,7 +8,7 @@ import pytest
 from mujoco import mjx
 
 from jdraw import robot
-from jdraw.robot import model, verifier
+from jdraw.robot import scene, verifier
 
 FK_TOL_M = 1e-6  # MJCF (angles written to 8 digits) vs the published joint frames
 MJX_QPOS_TOL = 1e-4  # rad, after 100 steps (float32 MJX vs float64 C)
@@ -53,7 +53,7 @@ def _reference_tip(q):
 
 
 def test_kinematics_match_gen3_frames():
-    m = model.load()
+    m = scene.load()
     d = mujoco.MjData(m)
     rng = np.random.default_rng(0)
     for _ in range(20):
@@ -66,9 +66,9 @@ def test_kinematics_match_gen3_frames():
 def test_sheet_mapping_round_trip():
     opts = robot.RobotOptions(sheet_center=(0.5, 0.1), sheet_yaw=0.3, sheet_size_mm=(80, 120))
     pts = np.array([[0, 0], [99, 0], [0, 99], [37.5, 60.25]])
-    xyz = model.canvas_to_world(pts, 2.0, opts)
-    np.testing.assert_allclose(model.world_to_canvas(xyz, opts), pts, atol=1e-9)
-    np.testing.assert_allclose(xyz[:, 2], model.PAPER_THICKNESS + 0.002)
+    xyz = scene.canvas_to_world(pts, 2.0, opts)
+    np.testing.assert_allclose(scene.world_to_canvas(xyz, opts), pts, atol=1e-9)
+    np.testing.assert_allclose(xyz[:, 2], scene.PAPER_THICKNESS + 0.002)
     # pixel (0, 0) and (99, 0) are 99 pixels of 0.8 mm apart
     np.testing.assert_allclose(np.linalg.norm(xyz[1] - xyz[0]), 0.0792, atol=1e-9)
 
@@ -76,8 +76,8 @@ def test_sheet_mapping_round_trip():
 def _pressed_state(m):
     """Joint angles putting the nib 0.5 mm into the paper at the sheet centre (C DLS)."""
     d = mujoco.MjData(m)
-    d.qpos[:7] = model.SEED
-    target = model.canvas_to_world([[49.5, 49.5]], -0.5, robot.RobotOptions())[0]
+    d.qpos[:7] = scene.SEED
+    target = scene.canvas_to_world([[49.5, 49.5]], -0.5, robot.RobotOptions())[0]
     jac = np.zeros((3, m.nv))
     for _ in range(100):
         mujoco.mj_kinematics(m, d)
@@ -90,7 +90,7 @@ def _pressed_state(m):
 
 @pytest.fixture(scope="module")
 def pressed():
-    m = model.load()
+    m = scene.load()
     qpos = _pressed_state(m)
     ctrl = qpos[:7] + np.array([0.004, 0, 0, 0, 0, 0, 0])  # swing the base: drag the pen ~2 mm
     return m, qpos, ctrl
@@ -124,3 +124,11 @@ def test_mjx_matches_mujoco_c(pressed):
     np.testing.assert_allclose(np.asarray(dx.qpos[:7]), d.qpos[:7], atol=MJX_QPOS_TOL)
     np.testing.assert_allclose(np.asarray(dx.site_xpos[0]), d.site("tip").xpos, atol=MJX_TIP_TOL_M)
     np.testing.assert_allclose(float(dx.qpos[7]), d.qpos[7], atol=MJX_SPRING_TOL_M)
+
+
+def test_load_model_is_a_deprecated_name_of_load_scene():
+    with pytest.warns(DeprecationWarning, match="load_scene"):
+        old = robot.load_model()
+    new = robot.load_scene()
+    assert (old.nq, old.ngeom, old.nbody) == (new.nq, new.ngeom, new.nbody)
+    np.testing.assert_array_equal(old.geom_size, new.geom_size)

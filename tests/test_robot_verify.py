@@ -6,7 +6,7 @@ import pytest
 
 import jdraw
 from jdraw import robot
-from jdraw.robot import model, verifier
+from jdraw.robot import scene, verifier
 
 IOU_MIN = 0.9  # acceptance: drawn vs planned
 IK_TOL_MM = 1.0  # acceptance: IK error
@@ -63,12 +63,12 @@ def test_ik_solution_checked_with_c_mujoco(report):
     """The IK joint angles put the C MuJoCo tip on the target (an FK residual)."""
     options = robot.RobotOptions()
     paths = [robot.tip_path(s, options) for s in PLAN.strokes]
-    m = model.load(options)
+    m = scene.load(options)
     d = mujoco.MjData(m)
     for i, p in enumerate(paths):
         for k in np.linspace(0, p.n_steps - 1, 25).astype(int):
             d.qpos[:] = 0
-            d.qpos[: model.N_ARM] = report.q_ref[i, k]
+            d.qpos[: scene.N_ARM] = report.q_ref[i, k]
             mujoco.mj_kinematics(m, d)
             err = np.linalg.norm(d.site("tip").xpos - p.targets[k])
             assert err <= FK_AGREE_M + report.max_ik_error_mm[i] / 1000, (i, k, err)

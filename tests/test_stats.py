@@ -7,11 +7,11 @@ import cv2
 import numpy as np
 import pytest
 
-import jdraw
 from jdraw import cli
-from jdraw.images import image as im
 from jdraw.io import stats
 from jdraw.tiling import plan_image as tiling
+from tests.doubles import trace_planner
+from tests.synthetic import photo_like, text_centrelines
 
 # A 100 x 50 px image drawn 200 mm wide (2 mm a pixel): an L (30 + 40 px), a bar
 # (30 px) and a dot; pen-up travel (30,40)->(60,40) and (60,10)->(90,10), 30 px each.
@@ -49,10 +49,10 @@ def test_servo_with_feeds_and_pixels():
 
 
 def test_cli_summary_and_json(tmp_path, monkeypatch, capsys):
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
-    lines, shape = im.text_centrelines("hi", 3.0)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
+    lines, shape = text_centrelines("hi", 3.0)
     path = tmp_path / "word.png"
-    cv2.imwrite(str(path), im.photo_like(lines, shape, width=6, noise=0.02))
+    cv2.imwrite(str(path), photo_like(lines, shape, width=6, noise=0.02))
     out = tmp_path / "out.json"
     argv = ["draw", str(path), "--no-progress", "--json", str(out), "--width-mm", "80"]
     assert cli.main(argv + ["--feed", "1000"]) == 0

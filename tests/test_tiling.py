@@ -4,9 +4,14 @@ import numpy as np
 import pytest
 
 from jdraw import geometry as raster
-from jdraw.images import image as im
+from jdraw.images.load import load_image
+from jdraw.images.prepare import prepare
 from jdraw.plans import Plan
+from jdraw.tiling import layout
 from jdraw.tiling import plan_image as tiling
+from jdraw.tiling.stitch import stitch
+from tests.doubles import trace_planner
+from tests.synthetic import centreline_scores, photo_like, text_centrelines
 
 TOL_PX = 4.0
 MIN_SCORE = 0.95
@@ -19,24 +24,24 @@ def wave(length=900.0, amplitude=110.0, periods=3.5, x0=40.0, y0=150.0):
 
 
 def reversing_planner(images, **kwargs):
-    """Plans like :func:`tiling.trace_planner`, then draws every tile backwards."""
-    plan = tiling.trace_planner(images, **kwargs)
+    """Plans like :func:`trace_planner`, then draws every tile backwards."""
+    plan = trace_planner(images, **kwargs)
     strokes = [[s[::-1] for s in tile[::-1]] for tile in plan.strokes]
     return Plan(strokes, plan.actions, plan.lengths, plan.truncated)
 
 
-@pytest.mark.parametrize("planner", [tiling.trace_planner, reversing_planner])
+@pytest.mark.parametrize("planner", [trace_planner, reversing_planner])
 @pytest.mark.parametrize("light", [False, True])
 def test_stroke_crossing_tile_borders_stays_one_polyline(planner, light):
     line = wave()
-    img = im.photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
+    img = photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
     result = tiling.plan_image(img, planner=planner, progress=False)
     cols = {round(t.transform.offset[0]) for t in result.tiles}
     rows = {round(t.transform.offset[1]) for t in result.tiles}
     assert len(cols) >= 4 and len(rows) >= 2  # the stroke crosses vertical and horizontal borders
     assert len(result.strokes) == 1
     assert result.border_joins >= len(result.tiles) - 1 and result.border_breaks == 0
-    precision, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
+    precision, recall = centreline_scores(result.strokes, [line], TOL_PX)
     assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)
     # In input pixel coordinates, in one motion from one end of the wave to the other.
     ends = result.strokes[0][[0, -1]]
@@ -45,11 +50,11 @@ def test_stroke_crossing_tile_borders_stays_one_polyline(planner, light):
 
 
 def test_sentence_photo_any_size_in_reading_order():
-    lines, shape = im.text_centrelines("hello world", 4.0)
-    img = im.photo_like(lines, shape, width=9, gradient=0.6, noise=0.08, seed=5)
-    result = tiling.plan_image(img, planner=tiling.trace_planner, progress=False)
+    lines, shape = text_centrelines("hello world", 4.0)
+    img = photo_like(lines, shape, width=9, gradient=0.6, noise=0.08, seed=5)
+    result = tiling.plan_image(img, planner=trace_planner, progress=False)
     assert len(result.tiles) > 1 and result.shape == shape
-    precision, recall = im.centreline_scores(result.strokes, lines, TOL_PX)
+    precision, recall = centreline_scores(result.strokes, lines, TOL_PX)
     assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)
     starts = np.array([s[:, 0].mean() for s in result.strokes])
     # Left to right: the words' strokes come in order of position, up to a letter's width.
@@ -59,13 +64,13 @@ def test_sentence_photo_any_size_in_reading_order():
 
 
 def test_small_drawing_fits_one_canvas():
-    lines, shape = im.text_centrelines("R", 2.0, script=False)
-    img = im.photo_like(lines, shape, width=3, noise=0.03)
-    result = tiling.plan_image(img, planner=tiling.trace_planner, progress=False)
+    lines, shape = text_centrelines("R", 2.0, script=False)
+    img = photo_like(lines, shape, width=3, noise=0.03)
+    result = tiling.plan_image(img, planner=trace_planner, progress=False)
     assert len(result.tiles) == 1
     ys, xs = np.nonzero(result.tiles[0].image)
     assert max(np.ptp(xs), np.ptp(ys)) == pytest.approx(80, abs=2)
-    precision, recall = im.centreline_scores(result.strokes, lines, TOL_PX)
+    precision, recall = centreline_scores(result.strokes, lines, TOL_PX)
     assert precision >= MIN_SCORE and recall >= MIN_SCORE
 
 
@@ -73,12 +78,12 @@ def test_stitch_joins_across_tiles_before_inside_a_tile():
     a = np.array([[95, 5], [96, 5], [97, 5], [98, 5], [99, 5]])
     b = np.array([[103, 6], [102, 5], [101, 5], [100, 5]])  # drawn towards the border
     c = np.array([[99, 6], [98, 7]])  # touches a's end but lies in a's tile
-    joined = tiling.stitch([(0, a), (1, b), (0, c)])
+    joined = stitch([(0, a), (1, b), (0, c)])
     assert len(joined) == 2
     np.testing.assert_array_equal(joined[0], np.concatenate([a, b[::-1]]))
     np.testing.assert_array_equal(joined[1], c)
     # The earliest piece sets the direction even when it is the second in the chain.
-    joined = tiling.stitch([(1, b), (0, a)])
+    joined = stitch([(1, b), (0, a)])
     np.testing.assert_array_equal(joined[0], np.concatenate([b, a[::-1]]))
 
 
@@ -90,17 +95,17 @@ def test_stitch_removes_pen_lifts_only_where_a_line_continues():
     # A hump: two strokes of one tile start at its top and run down either side.
     left, right = line_px([10, 10], [2, 13]), line_px([10, 10], [18, 13])
     report = {}
-    joined = tiling.stitch([(0, left), (0, right)], report)
+    joined = stitch([(0, left), (0, right)], report)
     assert len(joined) == 1 and report == {"joins": 0, "breaks": 0, "lift_joins": 1, "fragments": 0}
     np.testing.assert_array_equal(joined[0], np.concatenate([right[::-1], left[1:]]))
-    assert len(tiling.stitch([(0, left), (0, right)], smooth_cos=-2.0, fragment=0)) == 2
+    assert len(stitch([(0, left), (0, right)], smooth_cos=-2.0, fragment=0)) == 2
     # A corner is a pen lift a writer makes on purpose: kept.
     top, side = line_px([0, 0], [10, 0]), line_px([10, 0], [10, 10])
-    assert len(tiling.stitch([(0, top), (0, side)])) == 2
+    assert len(stitch([(0, top), (0, side)])) == 2
     # Two ends meeting on a third stroke are a junction: kept.
     up, down = line_px([20, 19], [20, 10]), line_px([20, 20], [20, 30])
     bar = line_px([10, 20], [30, 20])
-    assert len(tiling.stitch([(0, bar), (0, up), (0, down)])) == 3
+    assert len(stitch([(0, bar), (0, up), (0, down)])) == 3
 
 
 def test_stitch_trims_retraces_and_fragments():
@@ -108,7 +113,7 @@ def test_stitch_trims_retraces_and_fragments():
     extra = line_px([10, 0], [8, 0], [11, 0])  # retraces a's end to reach one more pixel
     inside = line_px([3, 0], [5, 0])  # drawn again, adds nothing
     report = {}
-    joined = tiling.stitch([(0, a), (0, inside), (0, extra)], report)
+    joined = stitch([(0, a), (0, inside), (0, extra)], report)
     assert report["fragments"] == 1 and report["lift_joins"] == 1
     assert len(joined) == 1
     np.testing.assert_array_equal(joined[0], line_px([0, 0], [11, 0]))
@@ -120,7 +125,7 @@ def test_stitch_keeps_every_pixel():
     for _ in range(12):
         pts = np.cumsum(rng.integers(-2, 3, size=(rng.integers(1, 9), 2)), axis=0) + 20
         pieces.append((int(rng.integers(0, 3)), pts))
-    joined = tiling.stitch(pieces)
+    joined = stitch(pieces)
     drawn = {tuple(q) for p in joined for q in p.tolist()}
     planned = {tuple(q) for _, p in pieces for q in raster.polyline_pixels(p).tolist()}
     assert planned <= drawn
@@ -136,7 +141,7 @@ def test_reading_order_lines_then_left_to_right():
         (45, 0, 50, 5),  # a dot above line 1's left word
         (200, 105, 260, 150),  # line 2, right
     ]
-    assert tiling._reading_order(boxes) == [2, 3, 0, 1, 4]  # the dot by its centre
+    assert layout._reading_order(boxes) == [2, 3, 0, 1, 4]  # the dot by its centre
 
 
 def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():
@@ -144,18 +149,18 @@ def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():
 
     def forgetful(images, **kwargs):
         calls.append((images.shape, images.dtype))
-        plan = tiling.trace_planner(images)
+        plan = trace_planner(images)
         strokes = [s[:-1] if len(s) > 1 else s for s in plan.strokes]
         return Plan(strokes, plan.actions, plan.lengths, np.ones(len(images), bool))
 
     line = wave()
-    img = im.photo_like([line], (300, 980), width=6, noise=0.04)
+    img = photo_like([line], (300, 980), width=6, noise=0.04)
     result = tiling.plan_image(img, planner=forgetful, batch_size=4, progress=False)
     n = len(result.tiles)
     assert all(s[1:] == (100, 100) and s[0] in (1, 2, 4) and d == np.dtype(bool) for s, d in calls)
     assert sum(min(4, n - 4 * i) for i in range(len(calls))) == n
     assert result.truncated == n and result.completed_pixels > 0
-    _, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
+    _, recall = centreline_scores(result.strokes, [line], TOL_PX)
     assert recall >= MIN_SCORE
     drawn = raster.render_strokes(result.strokes, result.shape)
     assert drawn.any()
@@ -169,12 +174,12 @@ def test_trained_planner_draws_a_line_across_tiles_in_one_motion(light):
     of humps, as KanjiVG strokes start); stitching removes those lifts.
     """
     line = wave()
-    img = im.photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
+    img = photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
     result = tiling.plan_image(img, progress=False)
     assert len(result.tiles) >= 8
     assert result.border_joins >= len(result.tiles) - 1 and result.border_breaks == 0
     assert len(result.strokes) == 1, len(result.strokes)
-    precision, recall = im.centreline_scores(result.strokes, [line], TOL_PX)
+    precision, recall = centreline_scores(result.strokes, [line], TOL_PX)
     assert precision >= MIN_SCORE and recall >= MIN_SCORE, (precision, recall)
 
 
@@ -183,10 +188,7 @@ def test_character_sized_image_is_fitted_to_one_canvas():
     # the model must see it whole to order its strokes, not 5 regions.
     import pathlib
 
-    from jdraw.images import image as im
-    from jdraw.tiling import plan_image as tiling
-
     path = pathlib.Path(__file__).parent.parent / "examples" / "images" / "kanji.png"
-    prep = im.prepare(im.load_image(path))
-    _, tiles, regions = tiling.layout(prep)
+    prep = prepare(load_image(path))
+    _, tiles, regions = layout.layout(prep)
     assert len(tiles) == 1 and len(regions) == 1

@@ -8,11 +8,12 @@ import pytest
 
 import jdraw
 from jdraw import cli, validate
-from jdraw.images import image as im
-from jdraw.io import formats
+from jdraw.images.prepare import prepare
+from jdraw.io.gcode import to_gcode
 from jdraw.model import bundle
 from jdraw.plans import render
 from jdraw.tiling import plan_image as tiling
+from tests.doubles import trace_planner
 
 
 def _no_planner(*a, **k):
@@ -49,7 +50,7 @@ def test_long_thin_image_has_ink(h, w):
         g[h // 2 - 1 : h // 2 + 2, w // 10 : w - w // 10] = 0.0
     else:
         g[h // 10 : h - h // 10, w // 2 - 1 : w // 2 + 2] = 0.0
-    prep = im.prepare(g)
+    prep = prepare(g)
     assert prep.ink.sum() >= 0.9 * (g == 0).sum()
     assert len(prep.polylines) == 1
 
@@ -57,7 +58,7 @@ def test_long_thin_image_has_ink(h, w):
 def test_long_thin_image_plans_end_to_end():
     g = np.full((20, 4000), 255, np.uint8)
     cv2.line(g, (100, 10), (3900, 10), 0, 3)
-    r = tiling.plan_image(g, planner=tiling.trace_planner, progress=False)
+    r = tiling.plan_image(g, planner=trace_planner, progress=False)
     xs = np.concatenate([s[:, 0] for s in r.strokes])
     assert xs.min() < 150 and xs.max() > 3850
 
@@ -91,7 +92,7 @@ def test_plan_image_rejects(image, kwargs, match):
 
 
 def test_plan_image_rejects_a_bad_checkpoint_before_planning(monkeypatch):
-    monkeypatch.setattr(jdraw, "plan", _no_planner)
+    monkeypatch.setattr(tiling, "default_planner", _no_planner)
     with pytest.raises(validate.InputError, match="no such file"):
         tiling.plan_image(_G, checkpoint="/no/such/bundle", progress=False)
 
@@ -168,10 +169,10 @@ def test_exit_codes_are_documented(capsys):
 def test_gcode_templates_take_only_documented_fields():
     s = [np.array([[0.0, 0.0], [5.0, 5.0]])]
     with pytest.raises(ValueError, match="unknown field"):
-        formats.to_gcode(s, (10, 10), pen_up="G0 Z{z_up.__class__}")
+        to_gcode(s, (10, 10), pen_up="G0 Z{z_up.__class__}")
     with pytest.raises(ValueError, match="feed"):
-        formats.to_gcode(s, (10, 10), feed=-1.0)
-    code = formats.to_gcode(s, (10, 10), pen_up="G0 Z{z_up} ; {{lift}}")
+        to_gcode(s, (10, 10), feed=-1.0)
+    code = to_gcode(s, (10, 10), pen_up="G0 Z{z_up} ; {{lift}}")
     assert "G0 Z5 ; {lift}" in code
 
 

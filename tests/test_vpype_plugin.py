@@ -11,9 +11,10 @@ vp = pytest.importorskip("vpype")
 vpype_cli = pytest.importorskip("vpype_cli")
 
 import jdraw  # noqa: E402
-from jdraw.images import image as im  # noqa: E402
 from jdraw.io import vpype_plugin  # noqa: E402
 from jdraw.tiling import plan_image as tiling  # noqa: E402
+from tests.doubles import trace_planner  # noqa: E402
+from tests.synthetic import photo_like, text_centrelines  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 MM = 96.0 / 25.4  # CSS pixels (vpype's unit) per mm
@@ -28,9 +29,9 @@ def registered():
 
 @pytest.fixture
 def word(tmp_path):
-    lines, shape = im.text_centrelines("hi", 3.0)
+    lines, shape = text_centrelines("hi", 3.0)
     path = tmp_path / "word.jpg"
-    cv2.imwrite(str(path), im.photo_like(lines, shape, width=6, gradient=0.5, noise=0.05))
+    cv2.imwrite(str(path), photo_like(lines, shape, width=6, gradient=0.5, noise=0.05))
     return path
 
 
@@ -53,7 +54,7 @@ def test_entry_point_declared():
 
 
 def test_layer_is_the_plan_in_order_with_sizes(word, monkeypatch):
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
     want = tiling.plan_image(str(word), progress=False)
     h, w = want.shape
     assert len(want.strokes) > 1
@@ -80,7 +81,7 @@ def test_layer_is_the_plan_in_order_with_sizes(word, monkeypatch):
 
 
 def test_write_svg_and_gwrite(word, tmp_path, monkeypatch):
-    monkeypatch.setattr(jdraw, "plan", tiling.trace_planner)
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
     result = tiling.plan_image(str(word), progress=False)
     want, (h, w) = result.strokes, result.shape
     svg, gcode = tmp_path / "out.svg", tmp_path / "out.gcode"

@@ -1,11 +1,16 @@
-"""Pictures of plans: strokes coloured by order, and the paper's Fig. 3 layout."""
+"""Panels for figures of many characters: the paper's Fig. 3 rows and grids of them.
+
+Each panel is an RGB array of one ``100 x 100`` canvas (target, pen path, strokes
+by order); :func:`fig3_row` puts three side by side, :func:`save_png` writes a
+stack of rows. One plan's own PNG and GIF are :mod:`jdraw.io.pictures`.
+"""
 
 from __future__ import annotations
 
 import cv2
 import numpy as np
 
-from jdraw.io import pictures as viz
+from jdraw.io import pictures
 
 
 def _canvas(shape, scale):
@@ -23,7 +28,7 @@ def strokes_panel(strokes, shape=(100, 100), scale: int = 4, target=None) -> np.
       strokes: list of ``[n, 2]`` (x, y) points.
       target: optional ``bool [H, W]`` drawn in light grey underneath.
     """
-    return viz.draw_strokes_png(target, strokes, None, scale=scale, shape=shape)
+    return pictures.draw_strokes_png(target, strokes, None, scale=scale, shape=shape)
 
 
 def trace_panel(strokes, shape=(100, 100), scale: int = 4) -> np.ndarray:

@@ -1,4 +1,8 @@
-"""Pictures of plans: strokes coloured by drawing order, each start marked; animations."""
+"""One plan as a picture: its strokes coloured by drawing order (PNG) or being drawn (GIF).
+
+What ``jdraw draw --png`` and ``--gif`` write, at the input's own size (cropped
+to the ink). Grids of many canvas-sized plans for figures are :mod:`jdraw.io.figures`.
+"""
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 
 ``plot_stats(result.strokes, result.shape, width_mm=150)`` answers what a
 plotter owner asks before sending a drawing: how much is drawn, how far the
-pen travels lifted, and how long the G-code of :func:`jdraw.io.formats.to_gcode`
+pen travels lifted, and how long the G-code of :func:`jdraw.io.gcode.to_gcode`
 with the same preset and feeds will take.
 """
 
@@ -13,7 +13,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from jdraw.io import formats
+from jdraw.io import gcode
+from jdraw.io.frame import physical_size
 
 
 @dataclasses.dataclass(frozen=True)
@@ -82,7 +83,7 @@ def plot_stats(
     *,
     width_mm: float | None = None,
     height_mm: float | None = None,
-    preset: str | formats.PlotterPreset = "zaxis",
+    preset: str | gcode.PlotterPreset = "zaxis",
     rapid_mm_min: float = 3000.0,
     **overrides,
 ) -> PlotStats:
@@ -91,21 +92,21 @@ def plot_stats(
     Args:
       strokes: ``[n, 2]`` (x, y) input-pixel polylines in drawing order.
       shape: ``(H, W)`` of the input image.
-      width_mm, height_mm: physical size (as :func:`jdraw.io.formats.to_gcode`);
+      width_mm, height_mm: physical size (as :func:`jdraw.io.gcode.to_gcode`);
         lengths are then in mm. Without either, lengths are in input pixels
         and the time is for G-code's default size, 100 mm wide.
       preset, overrides: the G-code preset and its changed fields (``feed``,
         ``travel_feed``, ``z_up``, ``z_down``, ``z_feed``, ``dwell_s``), as
-        :func:`jdraw.io.formats.to_gcode` takes them.
+        :func:`jdraw.io.gcode.to_gcode` takes them.
       rapid_mm_min: speed of ``G0`` moves, which G-code leaves to the machine
         (an assumption; pass your machine's).
     """
-    p = formats.PRESETS[preset] if isinstance(preset, str) else preset
+    p = gcode.PRESETS[preset] if isinstance(preset, str) else preset
     changes = {k: v for k, v in overrides.items() if v is not None}
     if changes:
         p = dataclasses.replace(p, **changes)
     sized = width_mm is not None or height_mm is not None
-    wm, _ = formats.physical_size(shape, width_mm, height_mm) if sized else (100.0, 0.0)
+    wm, _ = physical_size(shape, width_mm, height_mm) if sized else (100.0, 0.0)
     k = wm / shape[1]  # mm per input pixel in the G-code
     down_px, up_px = lengths(strokes)
     n = sum(1 for s in strokes if len(np.asarray(s).reshape(-1, 2)))

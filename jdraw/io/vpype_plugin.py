@@ -105,21 +105,21 @@ def jdraw(image, checkpoint, size, width, height, polarity, min_gap, max_steps):
     size. Without --size/--width/--height, one input pixel is one CSS pixel.
     Sets the page size to the image's frame when none is set.
     """
-    from jdraw.images import image as jimage
-    from jdraw.tiling import plan_image as tiling
+    from jdraw.images.load import ImageError, load_image
+    from jdraw.tiling.plan_image import plan_image
 
     if max_steps is not None and max_steps < 1:
         raise click.BadParameter("must be positive", param_hint="--max-steps")
     try:
-        result = tiling.plan_image(
-            jimage.load_image(image),
+        result = plan_image(
+            load_image(image),
             checkpoint=checkpoint,
             max_steps=max_steps,
             polarity=polarity,
             min_gap=min_gap,
             progress=False,
         )
-    except jimage.ImageError as e:  # unreadable or blank: say so, no traceback
+    except ImageError as e:  # unreadable or blank: say so, no traceback
         raise click.ClickException(f"jdraw: {image}: {e}") from e
     k = scale_for(result.shape, size, width, height)
     document = vpype_cli.State.get_current().document

@@ -12,7 +12,7 @@ import dataclasses
 
 import numpy as np
 
-from jdraw.robot import model
+from jdraw.robot import scene
 from jdraw.robot.options import RobotOptions
 
 
@@ -213,9 +213,9 @@ def apply(paths, targets: np.ndarray, options: RobotOptions, faults: Faults, pas
     """
     b, t, _ = targets.shape
     targets = targets.copy()
-    bias = np.random.default_rng([faults.seed, 1]).normal(0, 1, model.N_ARM)
+    bias = np.random.default_rng([faults.seed, 1]).normal(0, 1, scene.N_ARM)
     bias = (faults.joint_bias_rad * bias).astype(np.float32)
-    ctrl_offset = np.broadcast_to(bias, (b, t, model.N_ARM)).copy()
+    ctrl_offset = np.broadcast_to(bias, (b, t, scene.N_ARM)).copy()
     pen_ok = np.ones((b, t), bool)
     mm_per_px = np.asarray(options.sheet_size_mm, np.float64) / 100
     logs = []
@@ -223,7 +223,7 @@ def apply(paths, targets: np.ndarray, options: RobotOptions, faults: Faults, pas
         rng = np.random.default_rng([faults.seed, 2, pass_index, i])
         n = p.n_steps
         if faults.joint_noise_rad:
-            ctrl_offset[i, :n] += rng.normal(0, faults.joint_noise_rad, (n, model.N_ARM))
+            ctrl_offset[i, :n] += rng.normal(0, faults.joint_noise_rad, (n, scene.N_ARM))
         if faults.sheet_wobble_mm:
             # A surface h higher is the same as the tip target h lower on a flat sheet.
             h = sheet_height_mm(p.canvas, options, faults)

@@ -11,7 +11,7 @@ import jax
 import jax.numpy as jnp
 from mujoco import mjx
 
-from jdraw.robot.model import N_ARM
+from jdraw.robot.scene import N_ARM
 
 _DOWN = jnp.array([0.0, 0.0, -1.0])
 _ROT_WEIGHT = 0.1  # m per rad: 1 deg of pen tilt weighs like 1.7 mm of tip error

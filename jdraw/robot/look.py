@@ -23,13 +23,15 @@ import mujoco
 import numpy as np
 
 from jdraw import geometry as raster
-from jdraw.images import image as im
-from jdraw.robot import model
+from jdraw.images.canvas import CanvasTransform, render_polylines
+from jdraw.images.load import BlankImageError
+from jdraw.images.prepare import prepare
+from jdraw.robot import scene
 from jdraw.robot.options import RobotOptions
 
 SCALE = 4  # photo pixels per canvas pixel
 # The arm swung aside (joint 1 a quarter turn) so the camera sees the whole sheet.
-PARK = model.SEED + np.array([np.pi / 2, -0.6, 0, 0.6, 0, 0, 0], np.float32)
+PARK = scene.SEED + np.array([np.pi / 2, -0.6, 0, 0.6, 0, 0, 0], np.float32)
 
 
 def ink_photo(drawn: np.ndarray, nib_px: float = 1.0) -> np.ndarray:
@@ -72,11 +74,11 @@ def _camera(options: RobotOptions, size: int) -> tuple[mujoco.MjvCamera, float]:
     return cam, cam.distance
 
 
-def _project(scene: mujoco.MjvScene, points: np.ndarray, h: int, w: int) -> np.ndarray:
-    """World points ``[N, 3]`` to image ``(col, row)`` with the scene's GL camera."""
-    c = scene.camera[0]
+def _project(view: mujoco.MjvScene, points: np.ndarray, h: int, w: int) -> np.ndarray:
+    """World points ``[N, 3]`` to image ``(col, row)`` with the view's GL camera."""
+    c = view.camera[0]
     # a mono picture is taken from between the two stereo eyes
-    pos = (np.array(scene.camera[0].pos) + np.array(scene.camera[1].pos)) / 2
+    pos = (np.array(view.camera[0].pos) + np.array(view.camera[1].pos)) / 2
     fwd, up = np.array(c.forward), np.array(c.up)
     right = np.cross(fwd, up)
     rel = points - pos
@@ -100,11 +102,11 @@ def render_table(drawn: np.ndarray, real: RobotOptions, believed: RobotOptions, 
     """
     from jdraw.robot.picture import _add_ink
 
-    m = model.load(real)
+    m = scene.load(real)
     m.vis.global_.offwidth = max(m.vis.global_.offwidth, size)
     m.vis.global_.offheight = max(m.vis.global_.offheight, size)
     d = mujoco.MjData(m)
-    d.qpos[: model.N_ARM] = PARK
+    d.qpos[: scene.N_ARM] = PARK
     mujoco.mj_forward(m, d)
     cam, _ = _camera(believed, size)
     n = int(drawn.sum())
@@ -113,7 +115,7 @@ def render_table(drawn: np.ndarray, real: RobotOptions, believed: RobotOptions, 
         _add_ink(r.scene, np.argwhere(drawn)[:, ::-1], real)
         rgb = r.render().copy()
         edge = np.array([[-0.5, -0.5], [99.5, -0.5], [99.5, 99.5], [-0.5, 99.5]])
-        corners = _project(r.scene, model.canvas_to_world(edge, 0.0, believed), size, size)
+        corners = _project(r.scene, scene.canvas_to_world(edge, 0.0, believed), size, size)
     return rgb, corners
 
 
@@ -174,17 +176,17 @@ def photograph(
 def see(photo: np.ndarray) -> np.ndarray:
     """The ink in a paper-frame picture as 1-pixel lines on the canvas: ``bool [100, 100]``.
 
-    The steps of ``jdraw.plan_image``: :func:`jdraw.images.image.prepare` (binarise,
-    denoise, skeletonise, polylines) and :func:`jdraw.images.image.render_polylines`
+    The steps of ``jdraw.plan_image``: :func:`jdraw.images.prepare.prepare` (binarise,
+    denoise, skeletonise, polylines) and :func:`jdraw.images.canvas.render_polylines`
     with the picture's known scale (no refitting: the canvas is the paper).
     """
     try:
-        prep = im.prepare(photo, polarity="dark")
-    except im.BlankImageError:
+        prep = prepare(photo, polarity="dark")
+    except BlankImageError:
         return np.zeros((raster.CANVAS, raster.CANVAS), bool)
     s = photo.shape[1] / raster.CANVAS
-    tf = im.CanvasTransform(1 / s, (0.5 / s - 0.5, 0.5 / s - 0.5))
-    return im.render_polylines(prep.polylines, tf, (raster.CANVAS, raster.CANVAS))
+    tf = CanvasTransform(1 / s, (0.5 / s - 0.5, 0.5 / s - 0.5))
+    return render_polylines(prep.polylines, tf, (raster.CANVAS, raster.CANVAS))
 
 
 def register(target: np.ndarray, seen: np.ndarray, sigma: float = 1.5) -> np.ndarray:
@@ -229,9 +231,9 @@ def sheet_pose(a: np.ndarray, believed: RobotOptions) -> tuple[np.ndarray, float
     phi = float(np.arctan2(a[1, 0], a[0, 0]))
     yaw = believed.sheet_yaw + phi
     c = np.array([[49.5, 49.5]])
-    w = model.canvas_to_world(c, 0.0, believed)[0, :2]
+    w = scene.canvas_to_world(c, 0.0, believed)[0, :2]
     at_zero = dataclasses.replace(believed, sheet_center=(0.0, 0.0), sheet_yaw=yaw)
-    rel = model.canvas_to_world(apply_affine(a, c), 0.0, at_zero)[0, :2]
+    rel = scene.canvas_to_world(apply_affine(a, c), 0.0, at_zero)[0, :2]
     center = w - rel
     return (center - np.asarray(believed.sheet_center)) * 1000, float(np.degrees(phi))
 

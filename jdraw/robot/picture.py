@@ -15,21 +15,22 @@ import cv2
 import mujoco
 import numpy as np
 
-import jdraw
-from jdraw.robot import model
+from jdraw import geometry
+from jdraw.plans import Plan
+from jdraw.robot import scene
 from jdraw.robot.options import RobotOptions
 from jdraw.robot.verifier import Report, verify
 
 
-def demo_plan() -> jdraw.Plan:
+def demo_plan() -> Plan:
     """A hand-made plan: a square, its diagonal, a circle and a dot."""
-    sq = jdraw.geometry.polyline_pixels(
+    sq = geometry.polyline_pixels(
         np.array([[15, 15], [15, 55], [55, 55], [55, 15], [15, 15]])
     ).astype(float)
     th = np.linspace(0, 2 * np.pi, 64)
     circle = np.round(np.stack([70 + 18 * np.cos(th), 70 + 18 * np.sin(th)], -1))
     strokes = [sq, np.array([[15.0, 55.0], [55.0, 15.0]]), circle, np.array([[85.0, 15.0]])]
-    return jdraw.Plan(
+    return Plan(
         strokes=[strokes],
         actions=np.zeros((1, 1, 3), np.int32),
         lengths=np.zeros(1, np.int32),
@@ -56,23 +57,23 @@ def sheet_image(report: Report, index: int = 0, scale: int = 4) -> np.ndarray:
     return img
 
 
-def _add_ink(scene: mujoco.MjvScene, pixels: np.ndarray, options: RobotOptions) -> None:
-    half = model.pixel_size_m(options) / 2
+def _add_ink(view: mujoco.MjvScene, pixels: np.ndarray, options: RobotOptions) -> None:
+    half = scene.pixel_size_m(options) / 2
     for x, y in pixels:
-        if scene.ngeom >= scene.maxgeom:
+        if view.ngeom >= view.maxgeom:
             return
-        pos = model.canvas_to_world([[x, y]], 0.05, options)[0]
+        pos = scene.canvas_to_world([[x, y]], 0.05, options)[0]
         c, s = np.cos(options.sheet_yaw), np.sin(options.sheet_yaw)
         mat = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], np.float64).reshape(-1)
         mujoco.mjv_initGeom(
-            scene.geoms[scene.ngeom],
+            view.geoms[view.ngeom],
             mujoco.mjtGeom.mjGEOM_BOX,
             np.array([half[0], half[1], 2e-5]),
             pos,
             mat,
             np.array([0.05, 0.05, 0.05, 1], np.float32),
         )
-        scene.ngeom += 1
+        view.ngeom += 1
 
 
 def render_frames(
@@ -85,18 +86,18 @@ def render_frames(
     camera: str = "overview",
 ) -> list[np.ndarray]:
     """BGR frames of the arm at control ``steps``, with the ink laid so far."""
-    m = model.load(options)
+    m = scene.load(options)
     m.vis.global_.offwidth, m.vis.global_.offheight = max(width, 640), max(height, 480)
     d = mujoco.MjData(m)
     frames = []
     with mujoco.Renderer(m, height, width) as r:
         for k in steps:
-            d.qpos[: model.N_ARM] = report.q_sim[index, k]
+            d.qpos[: scene.N_ARM] = report.q_sim[index, k]
             mujoco.mj_forward(m, d)
             r.update_scene(d, camera=camera)
             # ink drawn so far: the planned pixels the nib has already passed
             done = report.touch[index, : k + 1]
-            tip = model.world_to_canvas(report.tip[index, : k + 1][done], options)
+            tip = scene.world_to_canvas(report.tip[index, : k + 1][done], options)
             ink = np.unique(np.floor(tip + 0.5).astype(int), axis=0) if len(tip) else tip
             ink = [
                 p

@@ -7,7 +7,7 @@ import jax.numpy as jnp
 from mujoco import mjx
 
 from jdraw import geometry as raster
-from jdraw.robot.model import N_ARM
+from jdraw.robot.scene import N_ARM
 
 
 def contact_point(d: mjx.Data, tip_geom: int, paper_geom: int, sheet: jax.Array):
@@ -19,7 +19,7 @@ def contact_point(d: mjx.Data, tip_geom: int, paper_geom: int, sheet: jax.Array)
     Args:
       d: MJX data after a step.
       tip_geom, paper_geom: geom ids.
-      sheet: ``[8]`` sheet parameters from :func:`jdraw.robot.model.sheet_params`.
+      sheet: ``[8]`` sheet parameters from :func:`jdraw.robot.scene.sheet_params`.
 
     Returns:
       ``touch`` bool, ``xy`` ``[2]`` float canvas coordinates of the contact

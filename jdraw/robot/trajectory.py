@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 
 from jdraw import geometry as raster
-from jdraw.robot import model
+from jdraw.robot import scene
 from jdraw.robot.options import RobotOptions
 
 
@@ -99,7 +99,7 @@ def tip_path(strokes, options: RobotOptions | None = None) -> TipPath:
     # A sample is pen-down when it lies between two pen-down vertices.
     seg_idx = np.clip(np.searchsorted(t, ts, side="right"), 1, len(t) - 1)
     down = is_down[seg_idx] & is_down[seg_idx - 1]
-    targets = model.canvas_to_world(samples[:, :2], samples[:, 2], options)
+    targets = scene.canvas_to_world(samples[:, :2], samples[:, 2], options)
     n_strokes = sum(1 for s in strokes if np.asarray(s).size)
     drawing = t[-1] - options.settle_s if len(t) > 2 else 0.0
     return TipPath(targets, samples[:, :2], down, n, float(drawing), n_strokes)

@@ -14,7 +14,7 @@ from mujoco import mjx
 
 from jdraw import plans as types
 from jdraw.robot import faults as F
-from jdraw.robot import ik, model, rollout, trajectory
+from jdraw.robot import ik, rollout, scene, trajectory
 from jdraw.robot.options import RobotOptions
 
 
@@ -102,19 +102,19 @@ class Arm:
 def arm(options: RobotOptions | None = None) -> Arm:
     """Loads and uploads the arm for ``options``' sheet placement (cached)."""
     options = options or RobotOptions()
-    m = model.load(options)
+    m = scene.load(options)
     mx = mjx.put_model(m)
     d = mjx.make_data(mx)
-    lim = m.jnt_limited[: model.N_ARM].astype(bool)
-    lo = np.where(lim, m.jnt_range[: model.N_ARM, 0], -np.inf).astype(np.float32)
-    hi = np.where(lim, m.jnt_range[: model.N_ARM, 1], np.inf).astype(np.float32)
+    lim = m.jnt_limited[: scene.N_ARM].astype(bool)
+    lo = np.where(lim, m.jnt_range[: scene.N_ARM, 0], -np.inf).astype(np.float32)
+    hi = np.where(lim, m.jnt_range[: scene.N_ARM, 1], np.inf).astype(np.float32)
     # Position actuators give kp (q* - q) - kv qdot; shifting the target by
     # (kv / kp) qdot_ref turns the damping into velocity tracking.
     kp, kv = m.actuator_gainprm[:, 0], -m.actuator_biasprm[:, 2]
     n_sub = int(round(options.control_dt / m.opt.timestep))
     if not np.isclose(n_sub * m.opt.timestep, options.control_dt):
         raise ValueError(f"control_dt must be a multiple of the {m.opt.timestep} s timestep")
-    return Arm(m, mx, d, model.ids(m), lo, hi, (kv / kp).astype(np.float32), n_sub)
+    return Arm(m, mx, d, scene.ids(m), lo, hi, (kv / kp).astype(np.float32), n_sub)
 
 
 # XLA's newer CPU fusion emitters make MJX kinematics ~100x slower on CPU
@@ -160,7 +160,7 @@ def _run(
         # Joint faults move the servo targets; the arm starts at rest on the first.
         ctrl = q + ff_gain * qd + ctrl_offset
         q0 = q[0] + ctrl_offset[0]
-        qpos0 = jnp.concatenate([q0, jnp.zeros(mx.nq - model.N_ARM, q.dtype)])
+        qpos0 = jnp.concatenate([q0, jnp.zeros(mx.nq - scene.N_ARM, q.dtype)])
         d0 = d.replace(qpos=qpos0, qvel=jnp.zeros_like(d.qvel), ctrl=q0)
         out = rollout.rollout(
             mx, d0, ctrl, valid & pen_ok, n_sub, tip_geom, paper_geom, tip_site, sheet, nib
@@ -211,12 +211,12 @@ def verify(
     out = _run(
         a.mx,
         a.d,
-        jnp.asarray(model.SEED),
+        jnp.asarray(scene.SEED),
         jnp.asarray(sim_targets),
         jnp.asarray(valid),
         jnp.asarray(ctrl_offset, jnp.float32),
         jnp.asarray(pen_ok),
-        jnp.asarray(model.sheet_params(real)),
+        jnp.asarray(scene.sheet_params(real)),
         jnp.asarray(a.lo),
         jnp.asarray(a.hi),
         jnp.float32(options.ik_damping),
@@ -239,7 +239,7 @@ def verify(
     offending, offending_steps = [], []
     for i, p in enumerate(paths):
         steps = np.flatnonzero(bad[i])
-        heights = (targets[i, steps, 2] - model.PAPER_THICKNESS) * 1000
+        heights = (targets[i, steps, 2] - scene.PAPER_THICKNESS) * 1000
         offending.append(
             np.concatenate([p.canvas[steps], heights[:, None]], -1)
             if len(steps)

@@ -1,4 +1,7 @@
-"""Arm trajectories for drawings of any size (``jdraw draw --trajectory``)."""
+"""Drawings of any size on the arm's sheet: fitting strokes to it, and the joint path.
+
+``jdraw draw --trajectory`` uses :func:`image_trajectory`.
+"""
 
 from __future__ import annotations
 
@@ -6,9 +9,9 @@ import numpy as np
 
 from jdraw import geometry as raster
 from jdraw import plans as types
-from jdraw.images import image as im
-from jdraw.io import formats
+from jdraw.images.canvas import fit_transform
 from jdraw.robot.options import RobotOptions
+from jdraw.robot.ros import joint_trajectory_from_report
 from jdraw.robot.verifier import Report, verify
 
 
@@ -29,7 +32,7 @@ def to_sheet(strokes, shape: tuple[int, int], fill: float = 0.9) -> list[np.ndar
         raise ValueError(f"image shape must be positive, got {shape}")
     if not 0 < fill <= 1:
         raise ValueError(f"fill must be in (0, 1], got {fill}")
-    tf = im.fit_transform((0.0, 0.0, w - 1.0, h - 1.0), extent=fill * (raster.CANVAS - 1))
+    tf = fit_transform((0.0, 0.0, w - 1.0, h - 1.0), extent=fill * (raster.CANVAS - 1))
     return [tf.to_canvas(np.asarray(s, np.float64).reshape(-1, 2)) for s in strokes]
 
 
@@ -47,11 +50,11 @@ def image_trajectory(
       ``iou`` of what the nib drew against the plan, ``drawing_time_s``, ...)
       and the IK joint targets as a dict shaped like ROS
       ``trajectory_msgs/JointTrajectory``
-      (:func:`jdraw.io.formats.joint_trajectory_from_report`).
+      (:func:`jdraw.robot.ros.joint_trajectory_from_report`).
     """
     sheet = to_sheet(strokes, shape, fill)
     plan = types.Plan(
         [sheet], np.zeros((1, 0, 3), np.int32), np.zeros(1, np.int32), np.zeros(1, bool)
     )
     report = verify(plan, options)
-    return report, formats.joint_trajectory_from_report(report, 0)
+    return report, joint_trajectory_from_report(report, 0)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from jdraw.io import pictures as viz
+from jdraw.io import pictures
 
 BLACK = np.array([20, 20, 20])
 PEN = np.array([230, 30, 30])
@@ -20,16 +20,18 @@ def test_animation_draws_in_order_at_pen_speed():
     b = np.array([[1100.0, 1060.0], [1000.0, 1060.0]])
     ink = np.zeros((3000, 3000), bool)
     ink[1000, 1000:1101] = ink[1060, 1000:1101] = True
-    frames = viz.animation_frames([a, b], target=ink, frames=40, travel_speed=3.0, max_side=300)
+    frames = pictures.animation_frames(
+        [a, b], target=ink, frames=40, travel_speed=3.0, max_side=300
+    )
     assert len(frames) == 41 and all(f.shape == frames[0].shape for f in frames)
     assert max(frames[0].shape[:2]) == 300  # cropped to the ink, not a speck in 3000 px
-    colours = viz.order_colours(2)
+    colours = pictures.order_colours(2)
     # Time: 100 px drawn, 60/3 = 20 travelled, 100 drawn: 220 units over 40 frames.
     # Frame 9 (t = 55): half of the first stroke, black, pen at x ~ 1055.
     f = frames[9]
     assert near(f, BLACK).any() and not near(f, colours[0]).any()
     ys, xs = np.nonzero(near(f, PEN))
-    x0, _, x1, _ = viz.ink_box(ink, [a, b])
+    x0, _, x1, _ = pictures.ink_box(ink, [a, b])
     scale = 300 / max(x1 - x0, 1)
     assert (xs.mean() / scale + x0) == pytest.approx(1055.5, abs=4)
     # Frame 29 (t = 165): first stroke finished in its colour, second half drawn in black.
@@ -44,7 +46,7 @@ def test_animation_draws_in_order_at_pen_speed():
 def test_gif_has_every_frame(tmp_path):
     strokes = [np.array([[10.0, 10.0], [80.0, 20.0], [50.0, 90.0]]), np.array([[20.0, 70.0]])]
     path = tmp_path / "plan.gif"
-    frames = viz.animate(strokes, path, shape=(100, 100), frames=12, frame_ms=50, hold_ms=900)
+    frames = pictures.animate(strokes, path, shape=(100, 100), frames=12, frame_ms=50, hold_ms=900)
     with Image.open(path) as gif:
         assert gif.n_frames == len(frames) == 13
         assert gif.info["loop"] == 0
@@ -58,7 +60,7 @@ def test_gif_has_every_frame(tmp_path):
 def test_png_crop_keeps_the_drawing_big():
     ink = np.zeros((2000, 3000), bool)
     ink[100:140, 2500] = True
-    box = viz.ink_box(ink, margin=0.1)
+    box = pictures.ink_box(ink, margin=0.1)
     assert box == (2496, 96, 2505, 144)
-    img = viz.draw_strokes_png(ink, [np.array([[2500.0, 100.0], [2500.0, 139.0]])], crop=box)
+    img = pictures.draw_strokes_png(ink, [np.array([[2500.0, 100.0], [2500.0, 139.0]])], crop=box)
     assert img.shape == (48 * 4, 9 * 4, 3)

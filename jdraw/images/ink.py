@@ -1,0 +1,184 @@
+"""Finding the ink: polarity, the ground's brightness, the threshold, stroke width, specks.
+
+A photo of handwriting has thick anti-aliased strokes, uneven light, noise and
+either polarity; :func:`binarize` turns its luminance into an ink mask that
+holds up under all of them.
+"""
+
+from __future__ import annotations
+
+import cv2
+import numpy as np
+from skimage import filters, morphology
+
+from jdraw.images.load import BlankImageError
+
+
+def _odd(n: float) -> int:
+    n = max(3, int(round(n)))
+    return n if n % 2 else n + 1
+
+
+def _median_background(gray: np.ndarray) -> np.ndarray:
+    """Large-window median: the paper's (or board's) brightness under sparse ink."""
+    h, w = gray.shape
+    small = cv2.resize(gray, (min(w, 256), min(h, 256)), interpolation=cv2.INTER_AREA)
+    k = min(
+        _odd(max(small.shape) / 6), 2 * (min(small.shape) // 2) - 1 if min(small.shape) > 2 else 3
+    )
+    med = cv2.medianBlur((small * 255).round().astype(np.uint8), max(3, k)).astype(np.float32) / 255
+    return cv2.resize(med, (w, h), interpolation=cv2.INTER_LINEAR)
+
+
+def detect_polarity(gray: np.ndarray) -> str:
+    """``"dark"`` for dark ink on a light ground, ``"light"`` for light on dark.
+
+    Ink is the sparse, far-from-background tail of the brightness distribution
+    once the slowly varying background is removed; its sign is the skew's.
+    """
+    d = gray - _median_background(gray)
+    d = d - d.mean()
+    skew = float(np.mean(d**3)) / max(float(np.mean(d**2)) ** 1.5, 1e-12)
+    return "light" if skew > 0 else "dark"
+
+
+def _masked_blur(values: np.ndarray, weights: np.ndarray, sigma: float) -> np.ndarray:
+    """Gaussian average of ``values`` over pixels with ``weights``; wide blurs run on a
+    small copy (what they keep is smooth anyway)."""
+    h, w = values.shape
+    f = min(1.0, 4.0 / sigma)
+    size = (max(2, round(w * f)), max(2, round(h * f)))
+    vw = values * weights
+    if f < 1.0:
+        vw = cv2.resize(vw, size, interpolation=cv2.INTER_AREA)
+        weights = cv2.resize(weights, size, interpolation=cv2.INTER_AREA)
+    num = cv2.GaussianBlur(vw, (0, 0), sigma * f)
+    den = cv2.GaussianBlur(weights, (0, 0), sigma * f)
+    out = num / np.maximum(den, 1e-6)
+    return cv2.resize(out, (w, h), interpolation=cv2.INTER_LINEAR) if f < 1.0 else out
+
+
+def _poly_powers(degree: int, w: int, h: int) -> list[tuple[int, int]]:
+    """``(i, j)`` powers of ``x**i * y**j``: total degree ``<= degree``, and fewer
+    across a long thin image's short side, over which lighting barely changes
+    (else a cubic across 20 rows bends into a line along them)."""
+    aspect = min(w, h) / max(w, h)
+    short = min(degree, int(4 * degree * aspect))
+    dx, dy = (degree, short) if w >= h else (short, degree)
+    return [(i, j) for i in range(degree + 1) for j in range(degree + 1 - i) if i <= dx and j <= dy]
+
+
+def _poly_terms(x: np.ndarray, y: np.ndarray, powers: list[tuple[int, int]]) -> np.ndarray:
+    return np.stack([x**i * y**j for i, j in powers], -1)
+
+
+def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
+    """The ground's brightness under the ink: ``float32 [H, W]``.
+
+    A cubic in (x, y) fitted to a small copy of the image, refitted a few
+    times without the pixels that lie on the ink side of it (a robust fit):
+    lighting gradients, vignetting and soft shadows are smooth, ink is not.
+    Unlike a blur, the fit does not bend towards the interior at the borders.
+    """
+    h, w = gray.shape
+    # Each axis shrinks on its own: a long thin strip keeps its short side, so a
+    # line along it is not averaged into the ground.
+    sw, sh = max(2, min(w, 128)), max(2, min(h, 128))
+    small = cv2.resize(gray, (sw, sh), interpolation=cv2.INTER_AREA).ravel().astype(np.float64)
+    ys, xs = np.mgrid[0:sh, 0:sw]
+    powers = _poly_powers(degree, w, h)
+    terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, powers)
+    sign = 1.0 if polarity == "light" else -1.0
+    keep = np.ones(small.shape, bool)
+    for _ in range(5):
+        coef = np.linalg.lstsq(terms[keep], small[keep], rcond=None)[0]
+        r = small - terms @ coef
+        spread = 1.4826 * np.median(np.abs(r[keep] - np.median(r[keep]))) + 1e-4
+        ink = (sign * r > 2.0 * spread).reshape(sh, sw).astype(np.uint8)
+        new_keep = ~cv2.dilate(ink, np.ones((3, 3), np.uint8)).astype(bool).ravel()
+        if new_keep.sum() < terms.shape[1] * 4:
+            break
+        keep = new_keep
+    # Evaluate on the full grid: pixel centres mapped to the small image's frame.
+    gx = ((np.arange(w) + 0.5) * sw / w - 0.5) / (sw - 1) * 2 - 1
+    gy = ((np.arange(h) + 0.5) * sh / h - 0.5) / (sh - 1) * 2 - 1
+    out = np.zeros((h, w))
+    for c, (i, j) in zip(coef, powers):
+        out += c * np.outer(gy**j, gx**i)
+    return out.astype(np.float32)
+
+
+def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]:
+    """Ink mask robust to uneven lighting and noise.
+
+    The image is divided by the ground's brightness (:func:`background`), so
+    that a lighting gradient cancels (light falls on ink and ground alike:
+    their ratio is constant), the remaining slow drift is removed with a blur
+    over ground pixels, and the result is thresholded halfway between the
+    ground and the typical ink contrast, which puts the mask's edge where an
+    anti-aliased stroke's edge is.
+
+    Args:
+      gray: ``float32 [H, W]`` in ``[0, 1]``.
+      polarity: ``"auto"``, ``"dark"`` (dark ink) or ``"light"`` (light ink).
+
+    Returns:
+      ``(bool [H, W] ink, polarity)``.
+
+    Raises:
+      BlankImageError: when no ink stands out from the background and noise.
+    """
+    if polarity not in ("auto", "dark", "light"):
+        raise ValueError(f"polarity must be 'auto', 'dark' or 'light', got {polarity!r}")
+    if polarity == "auto":
+        polarity = detect_polarity(gray)
+    g = cv2.GaussianBlur(gray.astype(np.float32), (0, 0), 1.0)
+    bg = background(g, polarity)
+    sign = -1.0 if polarity == "light" else 1.0
+    contrast = sign * (1.0 - g / np.maximum(bg, 0.02))
+    ink0 = contrast > filters.threshold_otsu(contrast)
+    ground = (~cv2.dilate(ink0.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)).astype(
+        np.float32
+    )
+    if ground.mean() > 0.05:
+        contrast = contrast - _masked_blur(contrast, ground, max(g.shape) / 10.0)
+        ink0 = contrast > filters.threshold_otsu(contrast)
+    background_px = contrast[~ink0]
+    if not ink0.any() or background_px.size == 0:
+        raise BlankImageError("no ink found (the image is blank)")
+    level = float(np.median(contrast[ink0]))
+    noise = 1.4826 * float(np.median(np.abs(background_px - np.median(background_px))))
+    base = float(np.median(background_px))
+    if level - base < max(0.06, 6.0 * noise):
+        raise BlankImageError("no ink found (nothing stands out from the background)")
+    return contrast > base + 0.5 * (level - base), polarity
+
+
+def ink_distance(ink: np.ndarray) -> np.ndarray:
+    """Distance from each ink pixel to the ground: ``float32 [H, W]``.
+
+    Outside the frame counts as ground, so an image that is all ink has finite
+    distances (OpenCV gives a huge sentinel where no ground pixel exists).
+    """
+    pad = np.pad(ink.astype(np.uint8), 1)
+    return cv2.distanceTransform(pad, cv2.DIST_L2, 5)[1:-1, 1:-1]
+
+
+def stroke_width(ink: np.ndarray, skeleton: np.ndarray | None = None) -> float:
+    """Typical stroke width in pixels: twice the median distance to the ground on the skeleton."""
+    if not ink.any():
+        return 1.0
+    if skeleton is None:
+        skeleton = morphology.skeletonize(ink)
+    dist = ink_distance(ink)
+    return max(1.0, 2.0 * float(np.median(dist[skeleton])) - 1.0)
+
+
+def denoise(ink: np.ndarray, width: float) -> np.ndarray:
+    """Drops specks and fills pinholes smaller than about half a stroke-width square."""
+    area = max(6, int(0.6 * width * width))
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(ink.astype(np.uint8), connectivity=8)
+    big = stats[:, cv2.CC_STAT_AREA] >= area
+    big[0] = False
+    ink = big[labels]
+    return morphology.remove_small_holes(ink, max_size=area)

@@ -1,0 +1,167 @@
+"""The skeleton as a graph: pixel chains between ends and junctions, spurs, simplification.
+
+Coordinates are ``(x, y)``: ``x`` the column, ``y`` the row, pixel centres at
+integers, as in :mod:`jdraw.geometry`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from skimage import measure, morphology
+
+_OFFSETS = ((-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1))  # (dy, dx)
+
+
+def _neighbour_table(skel: np.ndarray):
+    """Pixels of ``skel`` and their neighbours, without staircase shortcuts.
+
+    A diagonal link whose corner pixel is also on the skeleton is dropped, so a
+    staircase is a path and not a chain of triangles.
+    """
+    ys, xs = np.nonzero(skel)
+    index = np.full(skel.shape, -1, np.int64)
+    index[ys, xs] = np.arange(len(ys))
+    pad = np.pad(skel, 1)
+    nbrs: list[list[int]] = [[] for _ in range(len(ys))]
+    h, w = skel.shape
+    for dy, dx in _OFFSETS:
+        ok = pad[ys + 1 + dy, xs + 1 + dx]
+        if dy and dx:
+            ok &= ~pad[ys + 1, xs + 1 + dx] & ~pad[ys + 1 + dy, xs + 1]
+        for i in np.nonzero(ok)[0]:
+            nbrs[i].append(int(index[ys[i] + dy, xs[i] + dx]))
+    return np.stack([xs, ys], 1), nbrs
+
+
+def _trace(nbrs: list[list[int]]) -> list[list[int]]:
+    """Splits a pixel graph into chains between nodes (degree != 2), then cycles."""
+    deg = [len(n) for n in nbrs]
+    seen_edges: set[tuple[int, int]] = set()
+    chains = []
+
+    def walk(a: int, b: int) -> list[int]:
+        path = [a, b]
+        seen_edges.add((a, b))
+        seen_edges.add((b, a))
+        prev, cur = a, b
+        while deg[cur] == 2:
+            nxt = nbrs[cur][0] if nbrs[cur][0] != prev else nbrs[cur][1]
+            if (cur, nxt) in seen_edges:
+                break
+            seen_edges.add((cur, nxt))
+            seen_edges.add((nxt, cur))
+            path.append(nxt)
+            prev, cur = cur, nxt
+        return path
+
+    for i, d in enumerate(deg):
+        if d == 0:
+            chains.append([i])
+        elif d != 2:
+            for j in nbrs[i]:
+                if (i, j) not in seen_edges:
+                    chains.append(walk(i, j))
+    for i, d in enumerate(deg):
+        if d == 2 and (i, nbrs[i][0]) not in seen_edges:
+            chains.append(walk(i, nbrs[i][0]))
+    return chains
+
+
+def prune_spurs(skel: np.ndarray, dist: np.ndarray, width: float, rounds: int = 3) -> np.ndarray:
+    """Removes noise spurs: end branches off a junction that run out to the ink's edge.
+
+    A branch no longer than ``width`` whose free end is nearer the edge than
+    half the stroke's radius comes from a bump in the outline; the true end
+    of a stroke sits about a radius inside the outline (the centre of its
+    round cap) and is kept.
+
+    Args:
+      skel: ``bool [H, W]`` skeleton.
+      dist: ``float [H, W]`` distance of each ink pixel to the ground.
+      width: typical stroke width, pixels.
+    """
+    skel = skel.copy()
+    edge = 0.25 * width
+    for _ in range(rounds):
+        pts, nbrs = _neighbour_table(skel)
+        deg = np.array([len(n) for n in nbrs])
+        removed = False
+        for chain in _trace(nbrs):
+            a, b = deg[chain[0]], deg[chain[-1]]
+            if len(chain) < 2 or len(chain) > width:
+                continue
+            if (a == 1 and b >= 3) or (b == 1 and a >= 3):
+                tip = pts[chain[0]] if a == 1 else pts[chain[-1]]
+                if dist[tip[1], tip[0]] >= edge:
+                    continue
+                body = chain[:-1] if b >= 3 else chain[1:]
+                skel[pts[body, 1], pts[body, 0]] = False
+                removed = True
+        if not removed:
+            break
+    return morphology.skeletonize(skel)
+
+
+def extend_ends(
+    polylines: list[np.ndarray], skel: np.ndarray, dist: np.ndarray, width: float
+) -> list[np.ndarray]:
+    """Carries each free end of the skeleton on to the centre of the stroke's cap.
+
+    Thinning stops short of a stroke's end, most of all at a sharp turn where
+    the outline is blunt. The end is moved along its direction while the ink
+    there is still as thick as the stroke (distance to the ground at least
+    the stroke's radius), at most one stroke width.
+    """
+    pts, nbrs = _neighbour_table(skel)
+    ends = {(int(p[0]), int(p[1])) for p, n in zip(pts, nbrs, strict=True) if len(n) == 1}
+    radius = width / 2.0
+    h, w = dist.shape
+    out = []
+    for line in polylines:
+        p = np.asarray(line, np.float64)
+        if len(p) >= 3:
+            for first in (True, False):
+                q = p if not first else p[::-1]
+                end = q[-1]
+                if (int(end[0]), int(end[1])) not in ends:
+                    continue
+                back = q[max(0, len(q) - 1 - int(np.ceil(width)))]
+                d = end - back
+                n = np.hypot(*d)
+                if n < 1e-6:
+                    continue
+                d /= n
+                best = None
+                for t in np.arange(0.5, width + 0.5, 0.5):
+                    x, y = np.round(end + t * d).astype(int)
+                    if not (0 <= x < w and 0 <= y < h) or dist[y, x] < radius - 0.5:
+                        break
+                    best = end + t * d
+                if best is not None:
+                    q = np.concatenate([q, best[None]])
+                p = q if not first else q[::-1]
+        out.append(p)
+    return out
+
+
+def skeleton_polylines(skel: np.ndarray) -> list[np.ndarray]:
+    """Pixel chains of a 1-pixel skeleton: ``[n, 2]`` int (x, y) arrays.
+
+    Chains run between end points and junctions; a closed loop is traced from
+    an arbitrary pixel back to it (first point = last). A lone pixel is a
+    one-point chain.
+    """
+    pts, nbrs = _neighbour_table(np.asarray(skel, bool))
+    return [pts[c] for c in _trace(nbrs)]
+
+
+def simplify(points: np.ndarray, tol: float) -> np.ndarray:
+    """Ramer-Douglas-Peucker: drops points within ``tol`` of the kept polyline.
+
+    Distances are to the kept *segments* (``skimage.measure.approximate_polygon``),
+    so a stroke that doubles back keeps its turning point.
+    """
+    pts = np.asarray(points, np.float64)
+    if len(pts) < 3 or tol <= 0:
+        return pts
+    return measure.approximate_polygon(pts, tol)

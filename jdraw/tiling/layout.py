@@ -1,0 +1,149 @@
+"""Laying a drawing out for the planner: the scale, its regions in reading order, tiles.
+
+A drawing whose ink fits a character's extent at a scale where its lines stay
+separable is fitted to one ``100 x 100`` canvas, as for a character. Otherwise
+its centrelines are drawn on one large canvas at that scale, split into
+connected regions (a cursive word, a printed letter, a sketch), and every
+region wider or taller than a canvas is laid out as a grid of canvas-sized tiles.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import cv2
+import numpy as np
+
+from jdraw import geometry
+from jdraw.images.canvas import (
+    CHAR_EXTENT,
+    CanvasTransform,
+    fit_transform,
+    ink_bbox,
+    render_polylines,
+)
+from jdraw.images.prepare import Prepared
+
+CANVAS = geometry.CANVAS
+# A drawing that fits one canvas at this fraction of the separable scale is fitted, not tiled.
+FIT_SLACK = 0.7
+
+
+@dataclasses.dataclass(frozen=True)
+class Tile:
+    """One planner input.
+
+    Attributes:
+      region: index of the region it belongs to.
+      transform: input pixels -> this tile's canvas pixels.
+      image: ``bool [100, 100]`` what the planner is given.
+    """
+
+    region: int
+    transform: CanvasTransform
+    image: np.ndarray
+
+
+def choose_scale(prep: Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
+    """Canvas pixels per input pixel, and whether the drawing fits one canvas.
+
+    Centrelines of strokes that do not touch are at least a stroke width
+    apart; at ``min_gap / width`` canvas pixels per input pixel they stay
+    ``min_gap`` pixels apart, so they do not merge on the canvas. A drawing
+    whose ink fits the character extent at ``FIT_SLACK`` of that scale or
+    larger is fitted to one canvas like a character (lines then stay at least
+    ``FIT_SLACK * min_gap`` apart, as in KanjiVG's densest characters), so the
+    model orders all its strokes; otherwise it is tiled at that scale (never
+    enlarged, since thin lines are already separable).
+    """
+    s_min = min(1.0, min_gap / prep.width)
+    x0, y0, x1, y1 = ink_bbox(prep.polylines)
+    s_fit = CHAR_EXTENT / max(x1 - x0, y1 - y0, 1.0)
+    return (s_fit, True) if s_fit >= FIT_SLACK * s_min else (s_min, False)
+
+
+def _reading_order(boxes: Sequence[tuple[float, float, float, float]]) -> list[int]:
+    """Indices of ``boxes`` in reading order: text lines top to bottom, left to right.
+
+    Tall boxes define the lines; a small box (an i's dot, a comma) joins the
+    line whose vertical span is nearest its centre.
+    """
+    if not boxes:
+        return []
+    b = np.asarray(boxes, np.float64)
+    heights = b[:, 3] - b[:, 1] + 1
+    tall = heights >= 0.5 * np.median(heights)
+    lines: list[list[float]] = []  # [y0, y1]
+    for i in np.argsort(b[:, 1]):
+        if not tall[i]:
+            continue
+        for line in lines:
+            overlap = min(line[1], b[i, 3]) - max(line[0], b[i, 1])
+            if overlap > 0.5 * min(line[1] - line[0], heights[i]):
+                line[0], line[1] = min(line[0], b[i, 1]), max(line[1], b[i, 3])
+                break
+        else:
+            lines.append([b[i, 1], b[i, 3]])
+    lines.sort(key=lambda ln: ln[0] + ln[1])
+    centre_y = (b[:, 1] + b[:, 3]) / 2
+    spans = np.asarray(lines)
+    gap = np.maximum(spans[None, :, 0] - centre_y[:, None], centre_y[:, None] - spans[None, :, 1])
+    line_of = np.argmin(gap, axis=1)
+    centre_x = (b[:, 0] + b[:, 2]) / 2
+    return sorted(range(len(b)), key=lambda i: (line_of[i], centre_x[i]))
+
+
+def layout(prep: Prepared, min_gap: float = 4.0) -> tuple[float, list[Tile], list[tuple]]:
+    """Splits a prepared image into planner inputs.
+
+    Returns:
+      ``(scale, tiles, regions)``: tiles in planning order (regions in reading
+      order; a region's tiles column by column if it is wider than tall, else
+      row by row) and each region's input-pixel box.
+    """
+    scale, single = choose_scale(prep, min_gap)
+    if single:
+        tf = fit_transform(ink_bbox(prep.polylines))
+        canvas = render_polylines(prep.polylines, tf, (CANVAS, CANVAS))
+        return scale, [Tile(0, tf, canvas)], [ink_bbox(prep.polylines)]
+    h, w = prep.shape
+    whole = CanvasTransform(scale)
+    big = render_polylines(
+        prep.polylines,
+        whole,
+        (int(np.ceil(scale * (h - 1))) + 1, int(np.ceil(scale * (w - 1))) + 1),
+    )
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(big.astype(np.uint8), connectivity=8)
+    boxes = []
+    for k in range(1, n):
+        x, y, bw, bh = stats[k, :4]
+        boxes.append(tuple(whole.to_input([[x, y], [x + bw - 1, y + bh - 1]]).ravel()))
+    tiles: list[Tile] = []
+    regions = []
+    for r, i in enumerate(_reading_order(boxes)):
+        k = i + 1
+        x, y, bw, bh = (int(v) for v in stats[k, :4])
+        regions.append(boxes[i])
+        nx, ny = -(-bw // CANVAS), -(-bh // CANVAS)
+        gx, gy = x - (nx * CANVAS - bw) // 2, y - (ny * CANVAS - bh) // 2
+        cells = [(i, j) for i in range(nx) for j in range(ny)]
+        if bw <= bh:
+            cells.sort(key=lambda c: (c[1], c[0]))
+        mask = labels == k
+        for cx, cy in cells:
+            ox, oy = gx + cx * CANVAS, gy + cy * CANVAS
+            tile = _crop(mask, ox, oy)
+            if tile.any():
+                tiles.append(Tile(r, whole.shifted(ox, oy), tile))
+    return scale, tiles, regions
+
+
+def _crop(img: np.ndarray, ox: int, oy: int) -> np.ndarray:
+    """``img[oy:oy + 100, ox:ox + 100]``, zero outside ``img``."""
+    out = np.zeros((CANVAS, CANVAS), bool)
+    h, w = img.shape
+    x0, y0, x1, y1 = max(ox, 0), max(oy, 0), min(ox + CANVAS, w), min(oy + CANVAS, h)
+    if x1 > x0 and y1 > y0:
+        out[y0 - oy : y1 - oy, x0 - ox : x1 - ox] = img[y0:y1, x0:x1]
+    return out

@@ -1,0 +1,231 @@
+"""Stitching planned strokes across tile borders, so one line is drawn in one motion."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from scipy.cluster.hierarchy import DisjointSet
+
+from jdraw import geometry as raster
+
+
+def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
+    """Unit direction in which a pixel path leaves through ``end`` (0 first, 1 last)."""
+    if len(path) < 2:
+        return np.zeros(2)
+    k = min(reach, len(path) - 1)
+    a, b = (path[k], path[0]) if end == 0 else (path[-1 - k], path[-1])
+    d = (b - a).astype(np.float64)
+    return d / max(np.hypot(*d), 1e-9)
+
+
+def _trim_retrace(path: np.ndarray, least: int = 2) -> np.ndarray:
+    """Cuts a path's ends where it doubles back over its own pixels.
+
+    A planner that overshoots and comes back ends its stroke in the middle of
+    ink it already drew. Pixels drawn again at the end (or drawn first at the
+    start and again later) are cut when there are at least ``least`` of them,
+    so a closed loop that ends on its first pixel keeps it.
+    """
+    pix = [(int(x), int(y)) for x, y in path]
+    count: dict[tuple[int, int], int] = {}
+    for q in pix:
+        count[q] = count.get(q, 0) + 1
+    hi = len(pix)
+    left = dict(count)
+    while hi > 1 and left[pix[hi - 1]] > 1:
+        left[pix[hi - 1]] -= 1
+        hi -= 1
+    if len(pix) - hi < least:
+        hi = len(pix)
+    lo = 0
+    left = {q: 0 for q in count}
+    for q in pix[:hi]:
+        left[q] += 1
+    while lo < hi - 1 and left[pix[lo]] > 1:
+        left[pix[lo]] -= 1
+        lo += 1
+    if lo < least:
+        lo = 0
+    return path[lo:hi]
+
+
+def _trim_fragments(paths: list[np.ndarray | None], fragment: int) -> int:
+    """Trims fragments to the pixels no other path draws.
+
+    A fragment is a path that adds at most ``fragment`` pixels to what the
+    other paths draw (a retrace with a pixel or two beyond a stroke's end).
+    It is cut to its new pixels in the order first drawn when they form one
+    8-connected run, else covered pixels are removed from its ends only, so it
+    stays one connected path; a fragment adding nothing is dropped (set to
+    ``None``). Fragments adding least go first. Returns the number dropped.
+    """
+    own = [set(map(tuple, p.tolist())) if p is not None else set() for p in paths]
+    count: dict[tuple, int] = {}  # how many paths draw each pixel
+    for px in own:
+        for q in px:
+            count[q] = count.get(q, 0) + 1
+
+    def fresh(i: int) -> list[tuple]:
+        """Pixels only path ``i`` draws, in the order it first draws them."""
+        return [q for q in dict.fromkeys(map(tuple, paths[i].tolist())) if count[q] == 1]
+
+    adds = {i: len(fresh(i)) for i in range(len(paths)) if paths[i] is not None}
+    small = {i: n for i, n in adds.items() if n <= fragment}
+    dropped = 0
+    for i in sorted(small, key=small.get):
+        new = fresh(i)  # others may have been trimmed since
+        p = paths[i]
+        if not new:
+            paths[i] = None
+            dropped += 1
+        elif np.all(np.abs(np.diff(np.asarray(new), axis=0)) <= 1):
+            paths[i] = np.asarray(new, np.int64)  # one 8-connected run of new pixels
+        else:
+            lo, hi = 0, len(p)
+            while count[tuple(p[lo].tolist())] > 1:
+                lo += 1
+            while count[tuple(p[hi - 1].tolist())] > 1:
+                hi -= 1
+            paths[i] = p[lo:hi]
+        kept = set(map(tuple, paths[i].tolist())) if paths[i] is not None else set()
+        for q in own[i] - kept:
+            count[q] -= 1
+        own[i] = kept
+    return dropped
+
+
+def stitch(
+    pieces: Sequence[tuple[int, np.ndarray]],
+    report: dict | None = None,
+    *,
+    smooth_cos: float = -0.5,
+    fragment: int = 5,
+    reach: int = 2,
+) -> list[np.ndarray]:
+    """Joins strokes that meet end to end, so that one line is drawn in one motion.
+
+    Args:
+      pieces: ``(tile, [n, 2] int (x, y))`` strokes in one shared pixel frame
+        (a region's big canvas), in drawing order; consecutive points may be
+        up to the planner's move apart.
+      report: when given, receives counts (added to what it holds):
+        ``joins`` (links across tile borders), ``breaks`` (ends that had an
+        8-neighbour across a border but stayed unjoined), ``lift_joins`` (pen
+        lifts of one tile removed) and ``fragments`` (pieces dropped because
+        other strokes draw all their pixels).
+      smooth_cos: two strokes of one tile are joined only where they continue
+        each other: the cosine between their outward directions is at most this.
+      reach: ends at most this many pixels apart (Chebyshev) may be joined;
+        2 is the planner's longest move, and the gap is drawn as a straight step.
+      fragment: a piece that adds at most this many pixels to what the others
+        draw is a fragment; so is any piece this short.
+
+    Returns:
+      The joined strokes as 8-connected pixel paths, ordered by their earliest
+      piece; a joined stroke runs in the direction of its earliest piece.
+
+    Two ends are joined when they are at most ``reach`` pixels apart and
+
+    * the pieces lie in different tiles (the tile border cut the stroke), or
+    * they lie in one tile, no other stroke passes there (not a junction), and
+      the two continue each other smoothly, or one of them is a fragment.
+      The planner learned from KanjiVG to lift the pen where a character's
+      stroke ends; a long line cut into tiles gets pen lifts at spots such as
+      the tops of humps, where no character would end a stroke.
+
+    Where a stroke doubles back over itself at an end, that end is cut back
+    to the turn. Fragments (the planner retracing a stroke's end to reach a
+    pixel or two beyond it) are then trimmed to the pixels nothing else draws.
+    Border joins are made first, then the closest, then the straightest
+    continuations; every end is joined at most once.
+    """
+    paths: list[np.ndarray | None] = [_trim_retrace(raster.polyline_pixels(p)) for _, p in pieces]
+    tile_of = [t for t, _ in pieces]
+    dropped = _trim_fragments(paths, fragment)
+    live = [i for i, p in enumerate(paths) if p is not None and len(p)]
+    size = {i: len({(int(x), int(y)) for x, y in paths[i]}) for i in live}
+
+    ends: dict[tuple[int, int], list[tuple[int, int]]] = {}
+    inner: dict[tuple[int, int], set[int]] = {}
+    for s in live:
+        p = paths[s]
+        for e in (0, 1):
+            q = p[0] if e == 0 else p[-1]
+            ends.setdefault((int(q[0]), int(q[1])), []).append((s, e))
+        for x, y in p[2 : len(p) - 2]:
+            inner.setdefault((int(x), int(y)), set()).add(s)
+
+    def junction(q: tuple[int, int], pair: tuple[int, int]) -> bool:
+        x, y = q
+        return any(
+            inner.get((x + dx, y + dy), set()) - set(pair) for dx in (-1, 0, 1) for dy in (-1, 0, 1)
+        )
+
+    candidates = []
+    for (x, y), here in ends.items():
+        for dx in range(-reach, reach + 1):
+            for dy in range(-reach, reach + 1):
+                for s2, e2 in ends.get((x + dx, y + dy), ()):
+                    for s1, e1 in here:
+                        if s1 == s2 or (s1, e1) >= (s2, e2):
+                            continue
+                        o1, o2 = _outward(paths[s1], e1), _outward(paths[s2], e2)
+                        across = tile_of[s1] != tile_of[s2]
+                        if not across:
+                            tiny = min(size[s1], size[s2]) <= fragment
+                            if junction((x, y), (s1, s2)) or junction((x + dx, y + dy), (s1, s2)):
+                                continue
+                            if not tiny and float(o1 @ o2) > smooth_cos:
+                                continue
+                        step = np.array([dx, dy], np.float64) / max(np.hypot(dx, dy), 1e-9)
+                        score = float(o1 @ step - o2 @ step - o1 @ o2)
+                        gap = max(abs(dx), abs(dy))
+                        candidates.append((not across, gap, -score, s1, e1, s2, e2))
+    candidates.sort()
+    link: dict[tuple[int, int], tuple[int, int]] = {}
+    lift_joins = 0
+    chains = DisjointSet(live)  # links never close a loop
+
+    for same, _, _, s1, e1, s2, e2 in candidates:
+        if (s1, e1) in link or (s2, e2) in link or chains.connected(s1, s2):
+            continue
+        chains.merge(s1, s2)
+        link[(s1, e1)] = (s2, e2)
+        link[(s2, e2)] = (s1, e1)
+        lift_joins += same
+    if report is not None:
+        had = {(c[3], c[4]) for c in candidates if not c[0] and c[1] <= 1}
+        had |= {(c[5], c[6]) for c in candidates if not c[0] and c[1] <= 1}
+        report["joins"] = report.get("joins", 0) + len(link) // 2 - lift_joins
+        report["breaks"] = report.get("breaks", 0) + len(had - link.keys())
+        report["lift_joins"] = report.get("lift_joins", 0) + lift_joins
+        report["fragments"] = report.get("fragments", 0) + dropped
+
+    used = dict.fromkeys(live, False)
+    out = []
+    for seed in live:
+        if used[seed]:
+            continue
+        used[seed] = True
+        forward = [paths[seed]]
+        at = (seed, 1)
+        while at in link:
+            s, e = link[at]
+            if used[s]:
+                break
+            used[s] = True
+            forward.append(paths[s] if e == 0 else paths[s][::-1])
+            at = (s, 1 - e)
+        backward = []
+        at = (seed, 0)
+        while at in link:
+            s, e = link[at]
+            if used[s]:
+                break
+            used[s] = True
+            backward.append(paths[s] if e == 1 else paths[s][::-1])
+            at = (s, 1 - e)
+        out.append(raster.polyline_pixels(np.concatenate(backward[::-1] + forward)))
+    return out

@@ -19,7 +19,7 @@ import numpy as np
 
 from jdraw.geometry import CANVAS
 
-# Fields a G-code pen template may name (see jdraw.io.formats.PlotterPreset).
+# Fields a G-code pen template may name (see jdraw.io.gcode.PlotterPreset).
 TEMPLATE_FIELDS = (
     "z_up",
     "z_down",

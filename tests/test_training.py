@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from configs import tiny
-from jdraw.model import bundle
+from jdraw.model import bundle, checkpoints
 from jdraw.train import loop as training
+from jdraw.train.step import create_state, model_of
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -35,6 +36,18 @@ def _final_arrays(wd):
     return bundle.state_arrays(bundle.load(wd / "bundle")[0])
 
 
+def _assert_trained(wd, arrays: dict):
+    """``arrays`` are the run's trained weights: its last checkpoint's, not the initial ones."""
+    restored = bundle.state_arrays(checkpoints.restore(wd).model)
+    assert arrays.keys() == restored.keys()
+    for k in arrays:
+        np.testing.assert_array_equal(arrays[k], restored[k], err_msg=k)
+    g, _, st = create_state(checkpoints.read_config(wd))
+    initial = bundle.state_arrays(model_of(g, st))
+    still = [k for k in initial if np.array_equal(initial[k], arrays[k])]
+    assert not still, f"arrays left at their initial values: {still}"
+
+
 def test_loss_falls(straight_run):
     logs = [json.loads(x) for x in (straight_run / "metrics.jsonl").read_text().splitlines()]
     losses = [r["loss"] for r in logs if "loss" in r]
@@ -46,9 +59,13 @@ def test_resume_equals_uninterrupted(straight_run, tmp_path):
     cfg = _cfg(16)
     r1 = training.train(cfg, tmp_path, progress=False, stop_after=7)
     assert r1["step"] == 7 and not r1["done"]
+    assert not (tmp_path / "bundle").exists()  # written when the run is done
+    _plan_reads_the_workdir(tmp_path)
     r2 = training.train(cfg, tmp_path, progress=False)
     assert r2["step"] == 16 and r2["done"]
     a, b = _final_arrays(straight_run), _final_arrays(tmp_path)
+    _assert_trained(straight_run, a)
+    _assert_trained(tmp_path, b)
     assert a.keys() == b.keys()
     for k in a:
         np.testing.assert_allclose(a[k], b[k], rtol=0, atol=1e-6, err_msg=k)
@@ -58,10 +75,26 @@ def test_resume_equals_uninterrupted(straight_run, tmp_path):
     )
 
 
+def _plan_reads_the_workdir(wd):
+    """``plan(checkpoint=workdir)`` plans with the latest checkpoint and writes nothing there."""
+    import jdraw
+
+    before = {p: p.stat().st_mtime_ns for p in wd.rglob("*")}
+    img = np.zeros((100, 100), bool)
+    img[40, 20:70] = True
+    img[30:60, 45] = True
+    p = jdraw.plan(img, checkpoint=wd, max_steps=100)
+    assert {p: p.stat().st_mtime_ns for p in wd.rglob("*")} == before
+    _assert_trained(wd, bundle.state_arrays(jdraw.load_model(wd)))
+    q = jdraw.plan(img, checkpoint=jdraw.export(wd, wd.parent / f"{wd.name}_bundle"), max_steps=100)
+    np.testing.assert_array_equal(p.actions, q.actions)
+
+
 def test_export_bundle_loads_and_plans(straight_run, tmp_path):
     import jdraw
 
     out = jdraw.export(straight_run, tmp_path / "b")
+    _assert_trained(straight_run, bundle.state_arrays(bundle.load(out)[0]))
     meta = json.loads((out / "bundle.json").read_text())
     assert meta["format_version"] == bundle.FORMAT_VERSION and meta["model"]["hidden"] == 16
     img = np.zeros((100, 100), bool)

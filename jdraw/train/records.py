@@ -45,7 +45,7 @@ def restore(mgr: ocp.CheckpointManager, step: int, state: TrainState) -> tuple[T
         ),
     )
     nnx.replace_by_pure_dict(model_state, r["model"])
-    params, rest = model_state.split(nnx.Param, ...)
+    params, rest = nnx.split_state(model_state, nnx.Param, ...)
     return TrainState(params, rest, r["optimizer"]), dict(r["step"])
 
 

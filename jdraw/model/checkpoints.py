@@ -38,7 +38,10 @@ def manager(workdir, *, read_only: bool = False) -> ocp.CheckpointManager:
     import orbax.checkpoint as ocp  # here: importing jdraw to plan from a bundle needs no Orbax
 
     opts = ocp.CheckpointManagerOptions(
-        max_to_keep=2, save_interval_steps=1, read_only=read_only, create=not read_only
+        max_to_keep=None if read_only else 2,  # reading keeps every step there is
+        save_interval_steps=1,
+        read_only=read_only,
+        create=not read_only,
     )
     return ocp.CheckpointManager(
         pathlib.Path(workdir).resolve() / "checkpoints", options=opts, item_names=ITEMS

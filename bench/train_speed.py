@@ -13,12 +13,10 @@ import time
 
 import jax
 import numpy as np
-import optax
-from flax import nnx
 
 from jdraw.data import kanji
-from jdraw.model import network as M
-from jdraw.train import loop as training
+from jdraw.train import feed
+from jdraw.train.step import create_state, make_step
 
 
 def load_config(path):
@@ -37,21 +35,17 @@ def main():
     ks = kanji.load()
     pool = kanji.split_indices(ks, "train")
     t = time.perf_counter()
-    made = [training.make_batch(ks, pool, cfg, s) for s in range(args.steps)]
+    made = [feed.make_batch(ks, pool, cfg, s) for s in range(args.steps)]
     t_data = (time.perf_counter() - t) / args.steps
-    m = M.build(cfg.model, seed=0)
-    m.train()
-    g, params, rest = nnx.split(m, nnx.Param, ...)
-    tx = optax.adam(cfg.train.learning_rate)
-    opt = tx.init(params)
-    step = training.make_step(g, tx, float(cfg.train.global_weight))
-    mesh = training.data_mesh()
-    batches = [training.shard_batch(b, mesh) for b, _ in made]
-    params, rest, opt, logs = step(params, rest, opt, batches[0])  # compile
+    g, tx, state = create_state(cfg)
+    step = make_step(g, tx, float(cfg.train.global_weight))
+    mesh = feed.data_mesh()
+    batches = [feed.shard_batch(b, mesh) for b, _ in made]
+    state, logs = step(state, batches[0])  # compile
     jax.block_until_ready(logs)
     t = time.perf_counter()
     for b in batches:
-        params, rest, opt, logs = step(params, rest, opt, b)
+        state, logs = step(state, b)
     jax.block_until_ready(logs)
     dt = (time.perf_counter() - t) / args.steps
     strokes = np.mean([n for _, n in made])

@@ -3,8 +3,13 @@
 Command:
   python train.py --config configs/tiny.py --workdir /tmp/jdraw-tiny
 
-Result: the loss falls over 30 steps (tests/test_training.py checks it);
-the model is far too small and briefly trained to draw well.
+Wall time: 58 s for the command (27 s of training-loop time, the rest loading
+KanjiVG, compiling and validating) on the 2-core CPU at load average ~3.
+Result: the loss falls from 9.4 (step 5) to 5.0 (step 30) with 103 strokes fed;
+validation on 4 characters: pixel accuracy 1.0, stroke accuracy 0.21 (far too
+small and briefly trained to draw well). Trained 40 steps on 4 unaugmented
+characters it plans them at stroke accuracy 0.65, untrained 0.04
+(tests/test_learning.py).
 """
 
 import ml_collections

@@ -8,8 +8,8 @@ import pytest
 import jdraw
 from jdraw.data import demos as demo
 from jdraw.data import kanji
+from jdraw.evaluation import metrics
 from jdraw.model import bundle
-from jdraw.train import loop as training
 
 EXAMPLE = pathlib.Path(__file__).parent.parent / "examples" / "images" / "kanji.png"
 STROKE_ACC_FLOOR = 0.90  # on 16 test characters; eval.py measures the full figure
@@ -33,7 +33,7 @@ def test_bundled_checkpoint_draws_held_out_characters(kanji_set, seed):
     idx = rng.choice(kanji.split_indices(kanji_set, "test"), 16, replace=False)
     demos = [demo.sample(kanji_set, int(i)) for i in idx]
     plan = jdraw.plan(np.stack([d.target for d in demos]))
-    s = training.score(demos, plan)
+    s = metrics.score(demos, plan)
     assert s["pixel_acc"] >= PIXEL_ACC_FLOOR and s["truncated"] == 0.0
     assert s["stroke_acc"] >= STROKE_ACC_FLOOR, s
 

@@ -1,10 +1,11 @@
-"""Ablation (c): the looped global model's segment rasteriser and raw actions."""
+"""Ablation (c): the looped global model's segment rasteriser, raw actions, and what it learns."""
 
 import jax.numpy as jnp
 import numpy as np
 
 from jdraw import geometry as raster
 from jdraw.data import demos as demo
+from jdraw.planner import global_only as planner_go
 from jdraw.train import global_only
 
 
@@ -13,7 +14,7 @@ def test_draw_segment_matches_raster_rule():
     for _ in range(50):
         a, b = rng.integers(0, 100, (2, 2))
         img = np.asarray(
-            global_only.draw_segment(jnp.zeros((100, 100), bool), jnp.asarray(a), jnp.asarray(b))
+            planner_go.draw_segment(jnp.zeros((100, 100), bool), jnp.asarray(a), jnp.asarray(b))
         )
         ref = np.zeros((100, 100), bool)
         p = raster.segment_pixels(a, b)

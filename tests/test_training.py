@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from configs import tiny
-from jdraw.model import bundle
+from jdraw.model import bundle, checkpoints
 from jdraw.train import loop as training
+from jdraw.train.step import create_state, model_of
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -35,6 +36,18 @@ def _final_arrays(wd):
     return bundle.state_arrays(bundle.load(wd / "bundle")[0])
 
 
+def _assert_trained(wd, arrays: dict):
+    """``arrays`` are the run's trained weights: its last checkpoint's, not the initial ones."""
+    restored = bundle.state_arrays(checkpoints.restore(wd).model)
+    assert arrays.keys() == restored.keys()
+    for k in arrays:
+        np.testing.assert_array_equal(arrays[k], restored[k], err_msg=k)
+    g, _, st = create_state(checkpoints.read_config(wd))
+    initial = bundle.state_arrays(model_of(g, st))
+    still = [k for k in initial if np.array_equal(initial[k], arrays[k])]
+    assert not still, f"arrays left at their initial values: {still}"
+
+
 def test_loss_falls(straight_run):
     logs = [json.loads(x) for x in (straight_run / "metrics.jsonl").read_text().splitlines()]
     losses = [r["loss"] for r in logs if "loss" in r]
@@ -46,9 +59,13 @@ def test_resume_equals_uninterrupted(straight_run, tmp_path):
     cfg = _cfg(16)
     r1 = training.train(cfg, tmp_path, progress=False, stop_after=7)
     assert r1["step"] == 7 and not r1["done"]
+    assert not (tmp_path / "bundle").exists()  # written when the run is done
+    _plan_reads_the_workdir(tmp_path)
     r2 = training.train(cfg, tmp_path, progress=False)
     assert r2["step"] == 16 and r2["done"]
     a, b = _final_arrays(straight_run), _final_arrays(tmp_path)
+    _assert_trained(straight_run, a)
+    _assert_trained(tmp_path, b)
     assert a.keys() == b.keys()
     for k in a:
         np.testing.assert_allclose(a[k], b[k], rtol=0, atol=1e-6, err_msg=k)
@@ -58,10 +75,26 @@ def test_resume_equals_uninterrupted(straight_run, tmp_path):
     )
 
 
+def _plan_reads_the_workdir(wd):
+    """``plan(checkpoint=workdir)`` plans with the latest checkpoint and writes nothing there."""
+    import jdraw
+
+    before = {p: p.stat().st_mtime_ns for p in wd.rglob("*")}
+    img = np.zeros((100, 100), bool)
+    img[40, 20:70] = True
+    img[30:60, 45] = True
+    p = jdraw.plan(img, checkpoint=wd, max_steps=100)
+    assert {p: p.stat().st_mtime_ns for p in wd.rglob("*")} == before
+    _assert_trained(wd, bundle.state_arrays(jdraw.load_model(wd)))
+    q = jdraw.plan(img, checkpoint=jdraw.export(wd, wd.parent / f"{wd.name}_bundle"), max_steps=100)
+    np.testing.assert_array_equal(p.actions, q.actions)
+
+
 def test_export_bundle_loads_and_plans(straight_run, tmp_path):
     import jdraw
 
-    out = jdraw.model.checkpoints(straight_run, tmp_path / "b")
+    out = jdraw.export(straight_run, tmp_path / "b")
+    _assert_trained(straight_run, bundle.state_arrays(bundle.load(out)[0]))
     meta = json.loads((out / "bundle.json").read_text())
     assert meta["format_version"] == bundle.FORMAT_VERSION and meta["model"]["hidden"] == 16
     img = np.zeros((100, 100), bool)
@@ -75,32 +108,29 @@ def test_two_devices_step_equals_one_device():
     script = textwrap.dedent(
         """
         import numpy as np, jax, optax
-        from flax import nnx
         from jax.sharding import Mesh, NamedSharding, PartitionSpec as P
         from configs import tiny
         from jdraw.data import kanji
-        from jdraw.model import network as M
-        from jdraw.train import loop as training
+        from jdraw.train import feed
+        from jdraw.train.step import create_state, make_step
         assert len(jax.devices()) == 2
         cfg = tiny.get_config()
         ks = kanji.load(progress=False)
         pool = kanji.split_indices(ks, "train")
-        batch, _ = training.make_batch(ks, pool, cfg, 0)
+        batch, _ = feed.make_batch(ks, pool, cfg, 0)
         out = []
         for devs in (jax.devices()[:1], jax.devices()):
-            m = M.build(cfg.model, seed=0); m.train()
-            g, params, rest = nnx.split(m, nnx.Param, ...)
-            tx = optax.sgd(0.1)  # Adam's first step is sign(g): ill-conditioned to compare
-            opt = tx.init(params)
+            # Adam's first step is sign(g): ill-conditioned to compare
+            g, tx, state = create_state(cfg, tx=optax.sgd(0.1))
             mesh = Mesh(np.asarray(devs), ("data",))
-            rep = NamedSharding(mesh, P())
-            params, rest, opt = jax.device_put((params, rest, opt), rep)
-            step = training.make_step(g, tx, 1.0)
-            b = training.shard_batch(batch, mesh)
+            state = jax.device_put(state, NamedSharding(mesh, P()))
+            step = make_step(g, tx, 1.0)
+            b = feed.shard_batch(batch, mesh)
             if len(devs) == 2:
                 assert len(b["local"]["target"].sharding.device_set) == 2
-            params, rest, opt, logs = step(params, rest, opt, b)
-            out.append((jax.tree.leaves(params) + jax.tree.leaves(rest), float(logs["loss"])))
+            state, logs = step(state, b)
+            leaves = jax.tree.leaves(state.params) + jax.tree.leaves(state.rest)
+            out.append((leaves, float(logs["loss"])))
         (p1, l1), (p2, l2) = out
         err = max(float(np.max(np.abs(np.asarray(a) - np.asarray(b)))) for a, b in zip(p1, p2))
         print("loss", l1, l2, "max param diff", err)
@@ -121,6 +151,7 @@ _KILLER = textwrap.dedent(
     import os, signal, sys
     from configs import tiny
     from jdraw.train import loop as training
+    from jdraw.train import records
 
     mode, n, workdir = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     cfg = tiny.get_config()
@@ -141,14 +172,14 @@ _KILLER = textwrap.dedent(
 
         training.make_step = make_step
     else:  # SIGKILL while the checkpoint of step n is being written (Orbax saves async)
-        save = training.save
+        save = records.save
 
         def killing_save(mgr, step, *a):
             save(mgr, step, *a)
             if step == n:
                 os.kill(os.getpid(), signal.SIGKILL)
 
-        training.save = killing_save
+        records.save = killing_save
     training.train(cfg, workdir, progress=False)
     """
 )
@@ -182,8 +213,8 @@ def test_crash_recovery_logs_each_step_once_and_matches(straight_run, tmp_path):
 def test_export_keeps_the_training_config(straight_run, tmp_path):
     import jdraw
 
-    out = jdraw.model.checkpoints(straight_run, tmp_path / "b")
+    out = jdraw.export(straight_run, tmp_path / "b")
     want = json.loads((straight_run / "config.json").read_text())
     assert json.loads((out / "training_config.json").read_text()) == want
-    again = jdraw.model.checkpoints(out, tmp_path / "c")  # copying a bundle keeps it too
+    again = jdraw.export(out, tmp_path / "c")  # copying a bundle keeps it too
     assert json.loads((again / "training_config.json").read_text()) == want

@@ -28,7 +28,7 @@ class BundleError(ValueError):
 
 def state_arrays(model) -> dict[str, np.ndarray]:
     """Every array of ``model``'s state (params and batch stats), keyed by ``a/b/0/c`` path."""
-    flat = traverse_util.flatten_dict(nnx.state(model).to_pure_dict())
+    flat = traverse_util.flatten_dict(nnx.to_pure_dict(nnx.state(model)))
     return {"/".join(map(str, k)): np.asarray(v) for k, v in flat.items()}
 
 
@@ -159,7 +159,7 @@ def fill(model, arrays: dict[str, np.ndarray], *, partial: bool = False) -> int:
         bad = sorted(set(expected) - set(use))
         raise BundleError(f"arrays do not fit the model: {bad[:3]} missing or of the wrong shape")
     state = nnx.state(model)
-    pure = traverse_util.flatten_dict(state.to_pure_dict())
+    pure = traverse_util.flatten_dict(nnx.to_pure_dict(state))
     for k in pure:
         key = "/".join(map(str, k))
         if key in use:

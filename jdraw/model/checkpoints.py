@@ -1,39 +1,119 @@
-"""``jdraw.model.checkpoints``: a training checkpoint to an inference bundle."""
+"""Training workdirs: where their Orbax checkpoints live, reading them, exporting bundles.
+
+A workdir holds ``config.json`` (the run's config) and ``checkpoints/``, an
+Orbax ``CheckpointManager`` whose steps hold the items ``model`` (the NNX
+state as a pure dict), ``optimizer``, ``step`` (progress counters) and
+``config``. Reading a workdir needs only the model item; this module imports
+nothing from training or planning, so inference reads a workdir in memory.
+"""
 
 from __future__ import annotations
 
 import json
 import pathlib
+from typing import TYPE_CHECKING, NamedTuple
 
+import jax
 from flax import nnx
 from ml_collections import ConfigDict
 
 from jdraw.model import bundle
+from jdraw.model import network as M
+
+if TYPE_CHECKING:
+    import orbax.checkpoint as ocp
+
+ITEMS = ("model", "optimizer", "step", "config")
 
 
-def _latest(workdir: pathlib.Path):
-    from jdraw.train import loop as training
+class Restored(NamedTuple):
+    model: M.DrawModel  # in eval mode
+    config: ConfigDict  # the run's whole config
+    step: int
+    progress: dict  # the ``step`` item: strokes_seen, global_seen, wall_time_s
 
-    cfg_path = workdir / "config.json"
-    if not cfg_path.exists():
-        raise bundle.BundleError(f"{cfg_path}: missing; {workdir} is not a jdraw training workdir")
-    cfg = ConfigDict(json.loads(cfg_path.read_text()))
-    mgr = training.checkpoint_manager(workdir, cfg)
-    step = mgr.latest_step()
-    if step is None:
-        raise bundle.BundleError(f"{workdir / 'checkpoints'}: no checkpoint saved yet")
-    from jdraw.model import network as M
 
-    mdl = M.build(cfg.model, seed=int(cfg.seed))
-    graphdef, st = nnx.split(mdl)
-    import optax
+def manager(workdir, *, read_only: bool = False) -> ocp.CheckpointManager:
+    """The workdir's checkpoint manager; ``read_only`` writes and deletes nothing."""
+    import orbax.checkpoint as ocp  # here: importing jdraw to plan from a bundle needs no Orbax
 
-    params = nnx.state(mdl, nnx.Param)
-    opt_state = optax.adam(cfg.train.learning_rate).init(params)
-    st, _, progress = training.restore(mgr, step, st, opt_state)
-    mgr.close()
-    mdl = nnx.merge(graphdef, st)
-    return mdl, cfg, step, progress
+    opts = ocp.CheckpointManagerOptions(
+        max_to_keep=None if read_only else 2,  # reading keeps every step there is
+        save_interval_steps=1,
+        read_only=read_only,
+        create=not read_only,
+    )
+    return ocp.CheckpointManager(
+        pathlib.Path(workdir).resolve() / "checkpoints", options=opts, item_names=ITEMS
+    )
+
+
+def abstract(tree):
+    """Shapes and dtypes of ``tree``'s arrays, what Orbax restores into."""
+    import orbax.checkpoint as ocp
+
+    return jax.tree.map(ocp.utils.to_shape_dtype_struct, tree)
+
+
+def read_config(workdir) -> ConfigDict:
+    path = pathlib.Path(workdir) / "config.json"
+    if not path.exists():
+        raise bundle.BundleError(f"{path}: missing; {workdir} is not a jdraw training workdir")
+    return ConfigDict(json.loads(path.read_text()))
+
+
+def latest_step(workdir) -> int | None:
+    """The workdir's latest saved step, or ``None``."""
+    if not (pathlib.Path(workdir) / "checkpoints").exists():
+        return None
+    mgr = manager(workdir, read_only=True)
+    try:
+        return mgr.latest_step()
+    finally:
+        mgr.close()
+
+
+def restore(workdir) -> Restored:
+    """Builds the workdir's model from its config and fills in its latest parameters.
+
+    Raises:
+      jdraw.model.bundle.BundleError: no ``config.json`` or no checkpoint yet.
+    """
+    import orbax.checkpoint as ocp
+
+    workdir = pathlib.Path(workdir)
+    cfg = read_config(workdir)
+    mgr = manager(workdir, read_only=True)
+    try:
+        step = mgr.latest_step() if (workdir / "checkpoints").exists() else None
+        if step is None:
+            raise bundle.BundleError(f"{workdir / 'checkpoints'}: no checkpoint saved yet")
+        model = M.build(cfg.model, seed=int(cfg.seed))
+        state = nnx.state(model)
+        r = mgr.restore(
+            step,
+            args=ocp.args.Composite(
+                model=ocp.args.StandardRestore(abstract(nnx.to_pure_dict(state))),
+                step=ocp.args.JsonRestore(),
+            ),
+        )
+    finally:
+        mgr.close()
+    nnx.replace_by_pure_dict(state, r["model"])
+    nnx.update(model, state)
+    model.eval()
+    return Restored(model, cfg, int(step), dict(r["step"]))
+
+
+def provenance(workdir, cfg: ConfigDict, progress: dict) -> dict:
+    """A bundle's provenance: the workdir, the config's name and the progress counters."""
+    return {"workdir": str(workdir), "config": cfg.get("name", ""), **progress}
+
+
+def write_bundle(model, cfg: ConfigDict, out_dir, prov: dict) -> pathlib.Path:
+    """Writes a run's bundle: ``model``, its config section and the whole config beside it."""
+    tc = json.loads(cfg.to_json_best_effort())
+    return bundle.write(model, cfg.model.to_dict(), out_dir, prov, tc)
 
 
 def export(checkpoint_or_workdir, out_dir) -> pathlib.Path:
@@ -53,19 +133,6 @@ def export(checkpoint_or_workdir, out_dir) -> pathlib.Path:
         tc = src / bundle.TRAINING_CONFIG
         tc = json.loads(tc.read_text()) if tc.exists() else None
         return bundle.write(mdl, model_cfg, out_dir, meta.get("provenance"), tc)
-    mdl, cfg, step, progress = _latest(src)
-    prov = {"workdir": str(src), "step": int(step), "config": cfg.get("name", ""), **progress}
-    tc = json.loads((src / "config.json").read_text())
-    return bundle.write(mdl, cfg.model.to_dict(), out_dir, prov, tc)
-
-
-def bundle_for_workdir(workdir) -> pathlib.Path:
-    """The bundle of a workdir: ``workdir/bundle``, exported if older than the checkpoint."""
-    workdir = pathlib.Path(workdir)
-    out = workdir / "bundle"
-    ck = workdir / "checkpoints"
-    if not (out / "bundle.json").exists() or (
-        ck.exists() and ck.stat().st_mtime > (out / "bundle.json").stat().st_mtime
-    ):
-        export(workdir, out)
-    return out
+    r = restore(src)
+    prov = provenance(src, r.config, {"step": r.step, **r.progress})
+    return write_bundle(r.model, r.config, out_dir, prov)

@@ -185,7 +185,7 @@ class DrawModel(nnx.Module):
         cut a 5x5 patch of the state first, then encode it).
       kind: ``"two_scale"`` (the paper's model) or ``"global_only"`` (ablation
         c: the global model looped on itself, with a touch head; see
-        :mod:`jdraw.train.global_only`).
+        :mod:`jdraw.planner.global_only`).
     """
 
     def __init__(
@@ -270,6 +270,17 @@ class DrawModel(nnx.Module):
             return logits
         f = encode(states, self.global_first, self.trunk, self.global_norms)
         return _conv(f, self.global_head.w[...], self.global_head.b[...], "VALID")[..., 0]
+
+    def position_and_touch(self, states):
+        """Ablation (c): states ``[N, 100, 100, 4]`` -> (position ``[N, 100, 100]``, touch ``[N]``).
+
+        The next pen position's logits and the pen-down logit, the latter from
+        the canvas's pooled features.
+        """
+        f = encode(states, self.global_first, self.trunk, self.global_norms)
+        pos = _conv(f, self.global_head.w[...], self.global_head.b[...], "VALID")[..., 0]
+        pooled = jnp.concatenate([f.mean((1, 2)), f.max((1, 2))], -1)
+        return pos, self.global_touch(pooled)[..., 0]
 
 
 def build(cfg, seed: int = 0) -> DrawModel:

@@ -12,9 +12,9 @@ import numpy as np
 from flax import nnx
 
 from jdraw import geometry, state, validate
-from jdraw.model import bundle
+from jdraw.model import bundle, checkpoints
+from jdraw.planner import global_only, slots
 from jdraw.planner import loop as planner
-from jdraw.planner import slots
 from jdraw.plans import Plan
 
 CANVAS = geometry.CANVAS
@@ -55,10 +55,18 @@ def _load(path: str | None, mtime: float):
     return mdl
 
 
+@functools.lru_cache(maxsize=4)
+def _load_workdir(path: str, step: int):
+    del step  # part of the cache key only: a newer checkpoint is read again
+    return checkpoints.restore(path).model
+
+
 def load_model(checkpoint=None):
     """The model ``plan`` uses: a bundle folder, a training workdir, the bundled default.
 
-    With no argument and no bundled checkpoint, a seeded random model.
+    A training workdir is read, not written: its latest Orbax checkpoint is
+    restored in memory. With no argument and no bundled checkpoint, a seeded
+    random model.
     """
     if checkpoint is None:
         path = _default_bundle()
@@ -66,10 +74,9 @@ def load_model(checkpoint=None):
         return checkpoint
     else:
         path = pathlib.Path(checkpoint)
-        if not (path / "bundle.json").exists() and path.exists():
-            from jdraw.model.checkpoints import bundle_for_workdir
-
-            path = bundle_for_workdir(path)
+        if not (path / "bundle.json").exists() and (path / "config.json").exists():
+            step = checkpoints.latest_step(path)
+            return _load_workdir(str(path.resolve()), -1 if step is None else step)
     if path is None:
         return _load(None, 0.0)
     meta = pathlib.Path(path) / "bundle.json"
@@ -83,8 +90,6 @@ def _planner(graphdef, limits: planner.Limits, local_encoding: str, kind: str = 
     def one(st, target, labels):
         model = nnx.merge(graphdef, st)
         if kind == "global_only":
-            from jdraw.train import global_only
-
             return global_only.run(model, target, limits.max_steps)
         return planner.run(policy, model, (), target, labels, limits)
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.data import demos as demo
 from jdraw.data import kanji
 from jdraw.planner import plan as api
@@ -12,12 +12,12 @@ from jdraw.planner import plan as api
 
 def test_segment_pixels_is_8_connected_and_symmetric_rule():
     for d in [(2, 1), (1, 2), (-2, 1), (-1, -2), (2, 2), (0, 2), (7, -3)]:
-        p = raster.segment_pixels((10, 10), np.add((10, 10), d))
+        p = geometry.segment_pixels((10, 10), np.add((10, 10), d))
         assert np.max(np.abs(np.diff(p, axis=0))) == 1
         assert tuple(p[-1]) == (10 + d[0], 10 + d[1])
     # The local-move rule: the skipped pixel is a + sign(d) * (|d| // 2).
-    np.testing.assert_array_equal(raster.segment_pixels((5, 5), (6, 7))[1], (5, 6))
-    np.testing.assert_array_equal(raster.segment_pixels((5, 5), (4, 7))[1], (5, 6))
+    np.testing.assert_array_equal(geometry.segment_pixels((5, 5), (6, 7))[1], (5, 6))
+    np.testing.assert_array_equal(geometry.segment_pixels((5, 5), (4, 7))[1], (5, 6))
 
 
 def test_clean_path_is_thin_and_connected():

@@ -3,21 +3,20 @@
 import jax.numpy as jnp
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.data import demos as demo
-from jdraw.planner import global_only as planner_go
 from jdraw.train import global_only
 
 
-def test_draw_segment_matches_raster_rule():
+def test_paint_segment_matches_the_line_rule():
     rng = np.random.default_rng(0)
     for _ in range(50):
         a, b = rng.integers(0, 100, (2, 2))
         img = np.asarray(
-            planner_go.draw_segment(jnp.zeros((100, 100), bool), jnp.asarray(a), jnp.asarray(b))
+            geometry.paint_segment(jnp.zeros((100, 100), bool), jnp.asarray(a), jnp.asarray(b))
         )
         ref = np.zeros((100, 100), bool)
-        p = raster.segment_pixels(a, b)
+        p = geometry.segment_pixels(a, b)
         ref[p[:, 1], p[:, 0]] = True
         np.testing.assert_array_equal(img, ref)
 

@@ -4,7 +4,7 @@ import numpy as np
 from flax import nnx
 
 import jdraw
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.planner import ranker
 from jdraw.plans import Plan, render, strokes_from_actions
 from jdraw.train import ranker as ranker_train
@@ -35,7 +35,7 @@ def test_reorder_keeps_every_pixel_and_replays(rng):
         assert np.array_equal(render(out), render(plan))
         for b in range(len(out)):
             replay = strokes_from_actions(out.actions[b], out.lengths[b])
-            assert np.array_equal(raster.render_strokes(replay), render(out)[b])
+            assert np.array_equal(geometry.render_strokes(replay), render(out)[b])
             assert len(replay) == len(plan.strokes[b])
 
 
@@ -62,7 +62,7 @@ def test_ranker_learns_top_to_bottom_and_left_to_right(rng):
     for _ in range(60):
         ref = sorted(_bars(rng, 4), key=lambda s: s[0, 1])
         drawn = [s[::-1] if rng.random() < 0.5 else s for s in ref]
-        imgs = np.stack([raster.render_strokes([s]) for s in ref])
+        imgs = np.stack([geometry.render_strokes([s]) for s in ref])
         perm = rng.permutation(4)
         parts.append(ranker_train.examples([drawn[k] for k in perm], imgs, ref))
     data = tuple(np.concatenate([p[i] for p in parts]) for i in range(5))
@@ -89,7 +89,7 @@ def test_reverse_inks_the_same_pixels_with_few_extra_rows(rng):
     for _ in range(100):
         p = np.cumsum(np.vstack([[50, 50], moves[rng.integers(len(moves), size=15)]]), 0)
         r = ranker.reverse(p)
-        same = raster.render_strokes([p], (200, 200)) == raster.render_strokes([r], (200, 200))
+        same = geometry.render_strokes([p], (200, 200)) == geometry.render_strokes([r], (200, 200))
         assert same.all() and (r[0] == p[-1]).all() and (r[-1] == p[0]).all()
         knights = np.sum(np.sort(np.abs(np.diff(p, axis=0)), 1) == [1, 2], 1) == 2
         assert len(r) <= len(p) + knights.sum()

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import jdraw
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.robot import closed_loop, faults, look, redraw, scene, trajectory
 from jdraw.robot.options import RobotOptions
 
@@ -71,7 +71,7 @@ def test_pen_gate_cuts_early_lift_and_skips_in_mm():
 
 
 def test_register_recovers_shift_and_rotation():
-    target = raster.render_strokes(
+    target = geometry.render_strokes(
         [
             np.array([[20.0, 20.0], [80.0, 25.0], [70.0, 80.0]]),
             np.array([[30.0, 60.0], [55.0, 40.0]]),
@@ -94,9 +94,9 @@ def test_register_recovers_shift_and_rotation():
 
 
 def test_clip_never_leaves_allowed_pixels():
-    allowed = raster.render_strokes([np.array([[10.0, 10.0], [60.0, 10.0]])])
+    allowed = geometry.render_strokes([np.array([[10.0, 10.0], [60.0, 10.0]])])
     strokes = redraw.clip_to([np.array([[0.0, 10.0], [90.0, 10.0], [90.0, 50.0]])], allowed)
-    drawn = raster.render_strokes(strokes)
+    drawn = geometry.render_strokes(strokes)
     assert drawn.any() and not (drawn & ~allowed).any()
 
 
@@ -144,7 +144,7 @@ def test_loop_redraws_and_never_lowers_iou(faulty):
 def test_loop_never_draws_where_the_target_has_no_ink(faulty):
     target = faulty.target[0]
     for strokes in faulty.redrawn[0][1:]:
-        assert not (raster.render_strokes(strokes) & ~target).any()
+        assert not (geometry.render_strokes(strokes) & ~target).any()
     # and on the paper, new ink lands near the target's registered place
     a = faulty.transform[0, -1]
     inv = np.vstack([a, [0, 0, 1]])

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.images.load import load_image
 from jdraw.images.prepare import prepare
 from jdraw.plans import Plan
@@ -88,7 +88,7 @@ def test_stitch_joins_across_tiles_before_inside_a_tile():
 
 
 def line_px(*corners):
-    return raster.polyline_pixels(np.array(corners))
+    return geometry.polyline_pixels(np.array(corners))
 
 
 def test_stitch_removes_pen_lifts_only_where_a_line_continues():
@@ -127,7 +127,7 @@ def test_stitch_keeps_every_pixel():
         pieces.append((int(rng.integers(0, 3)), pts))
     joined = stitch(pieces)
     drawn = {tuple(q) for p in joined for q in p.tolist()}
-    planned = {tuple(q) for _, p in pieces for q in raster.polyline_pixels(p).tolist()}
+    planned = {tuple(q) for _, p in pieces for q in geometry.polyline_pixels(p).tolist()}
     assert planned <= drawn
     for p in joined:
         assert np.all(np.abs(np.diff(p, axis=0)) <= 1)  # one 8-connected motion each
@@ -162,7 +162,7 @@ def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():
     assert result.truncated == n and result.completed_pixels > 0
     _, recall = centreline_scores(result.strokes, [line], TOL_PX)
     assert recall >= MIN_SCORE
-    drawn = raster.render_strokes(result.strokes, result.shape)
+    drawn = geometry.render_strokes(result.strokes, result.shape)
     assert drawn.any()
 
 

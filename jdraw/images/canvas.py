@@ -14,11 +14,11 @@ from collections.abc import Sequence
 import numpy as np
 from skimage import morphology
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.images.prepare import Prepared, prepare
 from jdraw.images.skeleton import simplify
 
-CANVAS = raster.CANVAS
+CANVAS = geometry.CANVAS
 # A KanjiVG character spans about this many canvas pixels.
 CHAR_EXTENT = 80
 
@@ -60,7 +60,7 @@ def render_polylines(
     """
     tol = 0.35 / transform.scale
     canvas_lines = [transform.to_canvas(simplify(p, tol)) for p in polylines]
-    img = raster.render_strokes(canvas_lines, shape)
+    img = geometry.render_strokes(canvas_lines, shape)
     return morphology.skeletonize(img) if img.any() else img
 
 

@@ -134,9 +134,9 @@ def _as_drawing(plan, index: int, target):
     if hasattr(plan, "actions"):  # jdraw.Plan: one image of a batch, canvas pixels
         strokes = plan.strokes[index]
         if target is None:
-            from jdraw import geometry as raster
+            from jdraw import geometry
 
-            target = raster.render_strokes(strokes, (raster.CANVAS, raster.CANVAS))
+            target = geometry.render_strokes(strokes, (geometry.CANVAS, geometry.CANVAS))
         return list(strokes), target
     return [np.asarray(p, np.float64).reshape(-1, 2) for p in plan], target
 

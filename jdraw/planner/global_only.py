@@ -14,23 +14,11 @@ from __future__ import annotations
 import jax
 import jax.numpy as jnp
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw import state as S
 from jdraw.planner.loop import Out
 
-CANVAS = raster.CANVAS
-
-
-def draw_segment(img: jax.Array, a: jax.Array, b: jax.Array) -> jax.Array:
-    """``img`` with the pixels of :func:`jdraw.geometry.segment_pixels` ``(a, b)`` set."""
-    d = b - a
-    n = jnp.maximum(jnp.max(jnp.abs(d)), 1)
-    k = jnp.arange(CANVAS + 1)[:, None]
-    m = k * d[None]  # the offset is m / n rounded half toward zero, done in integers
-    p = a[None] + jnp.sign(m) * ((2 * jnp.abs(m) + n - 1) // (2 * n))
-    on = k[:, 0] <= jnp.max(jnp.abs(d))
-    p = jnp.where(on[:, None], p, a[None])
-    return img.at[p[:, 1], p[:, 0]].set(True)
+CANVAS = geometry.CANVAS
 
 
 def run(model, target, max_steps: int, max_idle: int = 16):
@@ -51,9 +39,9 @@ def run(model, target, max_steps: int, max_idle: int = 16):
         idx = jnp.argmax(jnp.where(target, pos[0], -jnp.inf).reshape(-1))
         p = jnp.stack([idx % CANVAS, idx // CANVAS]).astype(jnp.int32)
         down = (touch[0] > 0) & has_pen  # the pen is first put somewhere, lifted
-        v2 = jnp.where(down, draw_segment(visited, pen, p), visited)
+        v2 = jnp.where(down, geometry.paint_segment(visited, pen, p), visited)
         new = jnp.sum(v2 & ~visited)
-        last = jnp.where(down, draw_segment(last, pen, p), jnp.zeros_like(last))
+        last = jnp.where(down, geometry.paint_segment(last, pen, p), jnp.zeros_like(last))
         actions = actions.at[n].set(
             jnp.array([p[0] - pen[0], p[1] - pen[1], down.astype(jnp.int32)])
         )

@@ -25,7 +25,7 @@ import time
 import cv2
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw import plans as types
 from jdraw.images.canvas import to_canvas
 from jdraw.images.load import load_image
@@ -137,7 +137,7 @@ def exact_iou(target: np.ndarray, sheet: np.ndarray, a: np.ndarray) -> float:
     """Pixel IoU of ``sheet`` with the target's pixels moved by ``a`` and rounded."""
     pts = np.floor(look.apply_affine(a, np.argwhere(target)[:, ::-1]) + 0.5).astype(int)
     moved = np.zeros_like(target)
-    ok = np.all((pts >= 0) & (pts < raster.CANVAS), axis=1)
+    ok = np.all((pts >= 0) & (pts < geometry.CANVAS), axis=1)
     moved[pts[ok, 1], pts[ok, 0]] = True
     union = int((moved | sheet).sum())
     return (moved & sheet).sum() / union if union else 1.0
@@ -151,8 +151,8 @@ def _as_plan(image_or_plan, checkpoint) -> types.Plan:
     if isinstance(x, str | os.PathLike):
         x = load_image(x)
     x = np.asarray(x)
-    if x.shape[-2:] == (raster.CANVAS, raster.CANVAS) and x.ndim in (2, 3) and x.dtype == bool:
-        targets = x.reshape(-1, raster.CANVAS, raster.CANVAS)
+    if x.shape[-2:] == (geometry.CANVAS, geometry.CANVAS) and x.ndim in (2, 3) and x.dtype == bool:
+        targets = x.reshape(-1, geometry.CANVAS, geometry.CANVAS)
     else:
         targets = to_canvas(x)[0][None]
     kwargs = {} if checkpoint is None else {"checkpoint": checkpoint}
@@ -204,8 +204,8 @@ def draw_closed_loop(
     target = types.render(plan)
     b = len(target)
     real = true_options(options, faults)
-    tol_px = tol_mm / (float(np.mean(options.sheet_size_mm)) / raster.CANVAS)
-    grow = int(round(overlap_mm / (float(np.mean(options.sheet_size_mm)) / raster.CANVAS)))
+    tol_px = tol_mm / (float(np.mean(options.sheet_size_mm)) / geometry.CANVAS)
+    grow = int(round(overlap_mm / (float(np.mean(options.sheet_size_mm)) / geometry.CANVAS)))
 
     sheet = np.zeros_like(target)
     sheets, seens, misses, transforms, reports = [], [], [], [], []
@@ -315,13 +315,13 @@ def picture(result: LoopResult, path: str | os.PathLike, index: int = 0, scale: 
     a = result.transform[index, -1]
     pts = np.floor(look.apply_affine(a, np.argwhere(result.target[index])[:, ::-1]) + 0.5)
     pts = pts.astype(int)
-    ok = np.all((pts >= 0) & (pts < raster.CANVAS), axis=1)
+    ok = np.all((pts >= 0) & (pts < geometry.CANVAS), axis=1)
     placed = np.zeros_like(result.target[index])
     placed[pts[ok, 1], pts[ok, 0]] = True
     first = result.sheets[index, 0]
     panels = []
     for k, sheet in enumerate([None, first, result.sheets[index, -1]]):
-        img = np.full((raster.CANVAS, raster.CANVAS, 3), 255, np.uint8)
+        img = np.full((geometry.CANVAS, geometry.CANVAS, 3), 255, np.uint8)
         if sheet is None:
             img[result.target[index]] = (20, 20, 20)
             label = "target"

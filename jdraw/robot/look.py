@@ -22,7 +22,7 @@ import cv2
 import mujoco
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.images.canvas import CanvasTransform, render_polylines
 from jdraw.images.load import BlankImageError
 from jdraw.images.prepare import prepare
@@ -165,7 +165,7 @@ def photograph(
         if method == "render":
             raise RuntimeError("the paper was not found in the camera picture")
         return ink_photo(drawn), "ink"
-    side = raster.CANVAS * SCALE
+    side = geometry.CANVAS * SCALE
     dst = np.array([[0, 0], [side, 0], [side, side], [0, side]], np.float32) - 0.5
     h = cv2.getPerspectiveTransform(corners.astype(np.float32), dst)
     gray = cv2.cvtColor(rgb, cv2.COLOR_RGB2GRAY)
@@ -183,10 +183,10 @@ def see(photo: np.ndarray) -> np.ndarray:
     try:
         prep = prepare(photo, polarity="dark")
     except BlankImageError:
-        return np.zeros((raster.CANVAS, raster.CANVAS), bool)
-    s = photo.shape[1] / raster.CANVAS
+        return np.zeros((geometry.CANVAS, geometry.CANVAS), bool)
+    s = photo.shape[1] / geometry.CANVAS
     tf = CanvasTransform(1 / s, (0.5 / s - 0.5, 0.5 / s - 0.5))
-    return render_polylines(prep.polylines, tf, (raster.CANVAS, raster.CANVAS))
+    return render_polylines(prep.polylines, tf, (geometry.CANVAS, geometry.CANVAS))
 
 
 def register(target: np.ndarray, seen: np.ndarray, sigma: float = 1.5) -> np.ndarray:

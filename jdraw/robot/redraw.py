@@ -11,7 +11,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.images.skeleton import skeleton_polylines
 from jdraw.planner.plan import plan as default_planner
 from jdraw.robot import look
@@ -55,8 +55,8 @@ def clip_to(strokes, allowed: np.ndarray) -> list[np.ndarray]:
         s = np.asarray(s, np.float64).reshape(-1, 2)
         if not len(s):
             continue
-        path = raster.polyline_pixels(np.floor(s + 0.5))
-        inside = np.all((path >= 0) & (path < raster.CANVAS), axis=1)
+        path = geometry.polyline_pixels(np.floor(s + 0.5))
+        inside = np.all((path >= 0) & (path < geometry.CANVAS), axis=1)
         ok = np.zeros(len(path), bool)
         ok[inside] = allowed[path[inside, 1], path[inside, 0]]
         edges = np.flatnonzero(np.diff(np.concatenate([[0], ok.astype(int), [0]])))
@@ -99,12 +99,12 @@ def residual_strokes(
     kwargs = {} if checkpoint is None else {"checkpoint": checkpoint}
     # the batch's own size (as a power of two), not the count left: one compile
     size = 1 << (len(residual) - 1).bit_length()
-    batch = np.zeros((size, raster.CANVAS, raster.CANVAS), bool)
+    batch = np.zeros((size, geometry.CANVAS, geometry.CANVAS), bool)
     batch[: len(todo)] = residual[todo]
     plan = planner(batch, **kwargs)
     for k, i in enumerate(todo):
         strokes = clip_to(plan.strokes[k], residual[i])
-        left = residual[i] & ~raster.render_strokes(strokes)
+        left = residual[i] & ~geometry.render_strokes(strokes)
         if left.any():
             strokes += clip_to(skeleton_polylines(left), residual[i])
         out[i] = strokes if covered is None else end_on_ink(strokes, covered[i])

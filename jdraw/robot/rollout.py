@@ -6,7 +6,7 @@ import jax
 import jax.numpy as jnp
 from mujoco import mjx
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.robot.scene import N_ARM
 
 
@@ -112,7 +112,7 @@ def _stamp(ink: jax.Array, xy: jax.Array, radius) -> jax.Array:
         cells = base + off
         near = jnp.sum((cells - xy[..., None, :]) ** 2, axis=-1) <= radius**2
         hit = ink[..., None] & near
-    inside = jnp.all((cells >= 0) & (cells < raster.CANVAS), axis=-1)
-    cells = jnp.clip(cells, 0, raster.CANVAS - 1)
-    canvas = jnp.zeros((raster.CANVAS, raster.CANVAS), bool)
+    inside = jnp.all((cells >= 0) & (cells < geometry.CANVAS), axis=-1)
+    cells = jnp.clip(cells, 0, geometry.CANVAS - 1)
+    canvas = jnp.zeros((geometry.CANVAS, geometry.CANVAS), bool)
     return canvas.at[cells[..., 1], cells[..., 0]].max(hit & inside)

@@ -8,7 +8,7 @@ import importlib.resources
 import mujoco
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.robot.options import RobotOptions
 
 ARM_XML = "assets/robot/arm.xml"
@@ -62,7 +62,7 @@ def _frame(options: RobotOptions):
 
 def pixel_size_m(options: RobotOptions) -> np.ndarray:
     """``[2]`` m per canvas pixel along x (columns) and y (rows)."""
-    return np.asarray(options.sheet_size_mm, np.float64) / 1000 / raster.CANVAS
+    return np.asarray(options.sheet_size_mm, np.float64) / 1000 / geometry.CANVAS
 
 
 def canvas_to_world(points, height_mm, options: RobotOptions) -> np.ndarray:

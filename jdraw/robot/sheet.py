@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw import plans as types
 from jdraw.images.canvas import fit_transform
 from jdraw.robot.options import RobotOptions
@@ -32,7 +32,7 @@ def to_sheet(strokes, shape: tuple[int, int], fill: float = 0.9) -> list[np.ndar
         raise ValueError(f"image shape must be positive, got {shape}")
     if not 0 < fill <= 1:
         raise ValueError(f"fill must be in (0, 1], got {fill}")
-    tf = fit_transform((0.0, 0.0, w - 1.0, h - 1.0), extent=fill * (raster.CANVAS - 1))
+    tf = fit_transform((0.0, 0.0, w - 1.0, h - 1.0), extent=fill * (geometry.CANVAS - 1))
     return [tf.to_canvas(np.asarray(s, np.float64).reshape(-1, 2)) for s in strokes]
 
 

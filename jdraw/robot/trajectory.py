@@ -6,7 +6,7 @@ import dataclasses
 
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.robot import scene
 from jdraw.robot.options import RobotOptions
 
@@ -39,7 +39,7 @@ def _waypoints(strokes, options: RobotOptions):
     # rule, so a (2, 1) move goes through the same middle pixel as jdraw.render.
     strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in strokes]
     strokes = [
-        raster.polyline_pixels(np.floor(s + 0.5)).astype(np.float64) for s in strokes if len(s)
+        geometry.polyline_pixels(np.floor(s + 0.5)).astype(np.float64) for s in strokes if len(s)
     ]
     pts: list = []
     speed: list = []  # speed of the segment that ends at this vertex (0: a hold)

@@ -27,8 +27,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 from tqdm.auto import tqdm
 
-from jdraw import geometry as raster
-from jdraw import validate
+from jdraw import geometry, validate
 from jdraw.images.canvas import CanvasTransform
 from jdraw.images.load import load_image
 from jdraw.images.prepare import Prepared, prepare
@@ -37,7 +36,7 @@ from jdraw.planner.plan import plan as default_planner
 from jdraw.tiling.layout import Tile, choose_scale, layout
 from jdraw.tiling.stitch import stitch
 
-CANVAS = raster.CANVAS
+CANVAS = geometry.CANVAS
 Planner = Callable[..., object]
 
 
@@ -99,7 +98,7 @@ def _run_planner(planner, images, checkpoint, max_steps):
 
 def _complete(tile: np.ndarray, strokes: list[np.ndarray]) -> tuple[list[np.ndarray], int]:
     """Appends skeleton-traced strokes for ink a (truncated) plan left undrawn."""
-    left = tile & ~raster.render_strokes(strokes, tile.shape)
+    left = tile & ~geometry.render_strokes(strokes, tile.shape)
     if not left.any():
         return strokes, 0
     return strokes + [p.astype(np.float64) for p in skeleton_polylines(left)], int(left.sum())

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 import numpy as np
 from scipy.cluster.hierarchy import DisjointSet
 
-from jdraw import geometry as raster
+from jdraw import geometry
 
 
 def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
@@ -141,7 +141,7 @@ def stitch(
     Border joins are made first, then the closest, then the straightest
     continuations; every end is joined at most once.
     """
-    paths: list[np.ndarray | None] = [_trim_retrace(raster.polyline_pixels(p)) for _, p in pieces]
+    paths: list[np.ndarray | None] = [_trim_retrace(geometry.polyline_pixels(p)) for _, p in pieces]
     tile_of = [t for t, _ in pieces]
     dropped = _trim_fragments(paths, fragment)
     live = [i for i, p in enumerate(paths) if p is not None and len(p)]
@@ -227,5 +227,5 @@ def stitch(
             used[s] = True
             backward.append(paths[s] if e == 1 else paths[s][::-1])
             at = (s, 1 - e)
-        out.append(raster.polyline_pixels(np.concatenate(backward[::-1] + forward)))
+        out.append(geometry.polyline_pixels(np.concatenate(backward[::-1] + forward)))
     return out

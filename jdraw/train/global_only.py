@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.data import demos as D
 from jdraw.data.batches import global_state_arrays
 
-CANVAS = raster.CANVAS
+CANVAS = geometry.CANVAS
 RAW_SPACING = (3, 5)  # raw points every 3-4 pen positions (about 5-8 pixels)
 
 
@@ -59,12 +59,14 @@ def batch(ks, pool, rng, *, size: int, strength: float) -> dict:
                 drawn.append([p])
         out["target"][g] = d.target
         if drawn:
-            out["visited"][g] = raster.render_strokes([np.asarray(s) for s in drawn if len(s) > 1])
+            out["visited"][g] = geometry.render_strokes(
+                [np.asarray(s) for s in drawn if len(s) > 1]
+            )
             out["pen"][g] = acts[j - 1][0]
             out["has_pen"][g] = True
             cur = drawn[-1]
             if len(cur) > 1:
-                out["last"][g] = raster.render_strokes([np.asarray(cur)])
+                out["last"][g] = geometry.render_strokes([np.asarray(cur)])
         p, touch, _ = acts[j]
         out["goal"][g] = p[1] * CANVAS + p[0]
         out["touch"][g] = touch

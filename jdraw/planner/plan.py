@@ -40,6 +40,11 @@ def _default_bundle() -> pathlib.Path | None:
     return bundle.DEFAULT_BUNDLE if (bundle.DEFAULT_BUNDLE / "bundle.json").exists() else None
 
 
+def _folder(checkpoint) -> pathlib.Path | None:
+    """The bundle or workdir folder ``checkpoint`` names; ``None``: the default bundle."""
+    return _default_bundle() if checkpoint is None else pathlib.Path(checkpoint)
+
+
 @functools.lru_cache(maxsize=8)
 def _load(path: str | None, mtime: float):
     del mtime  # part of the cache key only
@@ -68,15 +73,12 @@ def load_model(checkpoint=None):
     restored in memory. With no argument and no bundled checkpoint, a seeded
     random model.
     """
-    if checkpoint is None:
-        path = _default_bundle()
-    elif isinstance(checkpoint, nnx.Module):
+    if isinstance(checkpoint, nnx.Module):
         return checkpoint
-    else:
-        path = pathlib.Path(checkpoint)
-        if not (path / "bundle.json").exists() and (path / "config.json").exists():
-            step = checkpoints.latest_step(path)
-            return _load_workdir(str(path.resolve()), -1 if step is None else step)
+    path = _folder(checkpoint)
+    if path is not None and not (path / "bundle.json").exists() and (path / "config.json").exists():
+        step = checkpoints.latest_step(path)
+        return _load_workdir(str(path.resolve()), -1 if step is None else step)
     if path is None:
         return _load(None, 0.0)
     meta = pathlib.Path(path) / "bundle.json"
@@ -102,13 +104,9 @@ def _planner(graphdef, limits: planner.Limits, local_encoding: str, kind: str = 
 
 def load_ranker(checkpoint=None):
     """The stroke ranker stored beside a bundle's model, or ``None``."""
-
-    if checkpoint is None:
-        path = _default_bundle()
-    elif isinstance(checkpoint, nnx.Module):
+    if isinstance(checkpoint, nnx.Module):
         return None
-    else:
-        path = pathlib.Path(checkpoint)
+    path = _folder(checkpoint)
     return _load_ranker(str(path.resolve())) if path is not None else None
 
 

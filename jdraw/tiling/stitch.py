@@ -204,28 +204,25 @@ def stitch(
         report["fragments"] = report.get("fragments", 0) + dropped
 
     used = dict.fromkeys(live, False)
+
+    def follow(seed: int, end: int) -> list[np.ndarray]:
+        """Paths linked on from ``seed``'s ``end``, each turned to lead away from it."""
+        chain, at = [], (seed, end)
+        while at in link:
+            s, e = link[at]
+            if used[s]:
+                break
+            used[s] = True
+            chain.append(paths[s] if e != end else paths[s][::-1])
+            at = (s, 1 - e)
+        return chain
+
     out = []
     for seed in live:
         if used[seed]:
             continue
         used[seed] = True
-        forward = [paths[seed]]
-        at = (seed, 1)
-        while at in link:
-            s, e = link[at]
-            if used[s]:
-                break
-            used[s] = True
-            forward.append(paths[s] if e == 0 else paths[s][::-1])
-            at = (s, 1 - e)
-        backward = []
-        at = (seed, 0)
-        while at in link:
-            s, e = link[at]
-            if used[s]:
-                break
-            used[s] = True
-            backward.append(paths[s] if e == 1 else paths[s][::-1])
-            at = (s, 1 - e)
+        forward = [paths[seed], *follow(seed, 1)]
+        backward = follow(seed, 0)
         out.append(geometry.polyline_pixels(np.concatenate(backward[::-1] + forward)))
     return out

@@ -135,3 +135,144 @@ def canonicalise(ink) -> np.ndarray:
         ink = skeletonize(ink)
     ink = drop_staircase_corners(ink)
     return bridge_gaps(ink)
+
+
+# ----------------------------------------------------------------------------- experimental
+
+
+def _smooth(p: np.ndarray, sigma: float) -> np.ndarray:
+    """Gaussian-smoothed chain ``[n, 2]`` with its two ends pinned (point reflection)."""
+    r = int(np.ceil(2.5 * sigma))
+    if len(p) < 3 or r < 1:
+        return p.astype(np.float64)
+    k = np.exp(-0.5 * (np.arange(-r, r + 1) / sigma) ** 2)
+    k /= k.sum()
+    n = len(p)
+    r = min(r, n - 1)
+    k = np.exp(-0.5 * (np.arange(-r, r + 1) / sigma) ** 2)
+    k /= k.sum()
+    head = 2 * p[0] - p[r:0:-1]
+    tail = 2 * p[-1] - p[-2 : -r - 2 : -1]
+    q = np.concatenate([head, p, tail]).astype(np.float64)
+    out = np.stack([np.convolve(q[:, j], k, "valid") for j in range(2)], 1)
+    return out
+
+
+def _draw_curve(q: np.ndarray) -> np.ndarray:
+    """Pixels of a float polyline as jdraw's rasteriser draws a curve (fine samples, rounded)."""
+    from jdraw import demo
+
+    seg = np.diff(q, axis=0)
+    ln = np.hypot(seg[:, 0], seg[:, 1])
+    s = np.concatenate([[0], np.cumsum(ln)])
+    t = np.arange(0, s[-1] + 1e-9, 0.25) if s[-1] > 0 else np.zeros(1)
+    t = np.append(t, s[-1])
+    x = np.interp(t, s, q[:, 0])
+    y = np.interp(t, s, q[:, 1])
+    pts = np.floor(np.stack([x, y], 1) + 0.5).astype(np.int64)
+    return demo.clean_path(pts)
+
+
+def redraw(ink: np.ndarray, sigma: float = 1.5) -> np.ndarray:
+    """Skeleton chains smoothed and redrawn with jdraw's curve rasteriser."""
+    from jdraw import image
+
+    pts, nbrs = image._neighbour_table(ink)
+    out = np.zeros_like(ink)
+    h, w = ink.shape
+    for chain in image._trace(nbrs):
+        p = pts[chain]
+        if len(p) < 4:
+            out[p[:, 1], p[:, 0]] = True
+            continue
+        q = _draw_curve(_smooth(p, sigma))
+        q[:, 0] = np.clip(q[:, 0], 0, w - 1)
+        q[:, 1] = np.clip(q[:, 1], 0, h - 1)
+        out[q[:, 1], q[:, 0]] = True
+    return out
+
+
+def canonicalise_v2(ink, sigma: float = 1.5) -> np.ndarray:
+    from skimage.morphology import skeletonize
+
+    ink = np.asarray(ink, bool)
+    if not ink.any():
+        return ink.copy()
+    sk = skeletonize(ink)
+    out = redraw(sk, sigma)
+    out = drop_staircase_corners(out)
+    return bridge_gaps(out)
+
+
+def canonicalise_sk(ink) -> np.ndarray:
+    from skimage.morphology import skeletonize
+
+    ink = np.asarray(ink, bool)
+    if not ink.any():
+        return ink.copy()
+    return bridge_gaps(drop_staircase_corners(skeletonize(ink)))
+
+
+def thin_lines(ink: np.ndarray, near: int = 2) -> np.ndarray:
+    """Skeletonises, then puts back what it removed within ``near`` px of a junction."""
+    from skimage.morphology import skeletonize
+
+    sk = skeletonize(ink)
+    junction = sk & (_degree(sk) >= 3)
+    k = np.ones((2 * near + 1, 2 * near + 1), np.uint8)
+    zone = cv2.dilate(junction.astype(np.uint8), k).astype(bool)
+    return sk | (ink & ~sk & zone)
+
+
+def canonicalise_t(ink) -> np.ndarray:
+    from skimage.morphology import skeletonize
+
+    ink = np.asarray(ink, bool)
+    if not ink.any():
+        return ink.copy()
+    if is_thick(ink):
+        ink = skeletonize(ink)
+    ink = thin_lines(ink)
+    ink = drop_staircase_corners(ink)
+    return bridge_gaps(ink)
+
+
+def thin_glitches(ink: np.ndarray) -> np.ndarray:
+    """Thins clusters of crowded pixels (3+ neighbours) that only a line passes through.
+
+    A cluster with two ways out is a lump on one line (a staircase triangle, a
+    doubled pixel); one with three or more is a junction and is kept as drawn.
+    """
+    from skimage.morphology import skeletonize
+
+    crowded = ink & (_degree(ink) >= 3)
+    if not crowded.any():
+        return ink
+    n, lab, stats, _ = cv2.connectedComponentsWithStats(crowded.astype(np.uint8), connectivity=8)
+    h, w = ink.shape
+    lumps = np.zeros_like(ink)
+    for c in range(1, n):
+        x, y, bw, bh, _ = stats[c]
+        y0, y1, x0, x1 = max(0, y - 1), min(h, y + bh + 1), max(0, x - 1), min(w, x + bw + 1)
+        cl = lab[y0:y1, x0:x1] == c
+        ring = ink[y0:y1, x0:x1] & ~cl & cv2.dilate(cl.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+        exits = cv2.connectedComponents(ring.astype(np.uint8), connectivity=8)[0] - 1
+        if exits <= 2:
+            lumps[y0:y1, x0:x1] |= cl
+    if not lumps.any():
+        return ink
+    sk = skeletonize(ink)
+    return ink & ~(lumps & ~sk)
+
+
+def canonicalise_g(ink) -> np.ndarray:
+    from skimage.morphology import skeletonize
+
+    ink = np.asarray(ink, bool)
+    if not ink.any():
+        return ink.copy()
+    if is_thick(ink):
+        ink = skeletonize(ink)
+    ink = thin_glitches(ink)
+    ink = drop_staircase_corners(ink)
+    return bridge_gaps(ink)

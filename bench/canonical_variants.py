@@ -1,7 +1,7 @@
 """Canonical inputs: how well the default model plans KanjiVG drawn other ways.
 
   PYTHONPATH=. nice -n 5 python bench/canonical_variants.py --n 100 --split train
-  PYTHONPATH=. nice -n 5 python bench/canonical_variants.py --n 100 --no-plan  # structure only, seconds
+  PYTHONPATH=. nice -n 5 python bench/canonical_variants.py --n 100 --no-plan  # seconds
 
 Draws N characters of a split (training by default: develop on it, not on
 the test split) in several styles, canonicalises them
@@ -114,9 +114,7 @@ def main() -> None:
             if args.dump:
                 out = pathlib.Path(args.dump)
                 out.mkdir(parents=True, exist_ok=True)
-                per = []
-                for b, (d, strokes) in enumerate(zip(demos, p.strokes)):
-                    per.append(len(strokes) - len(d.strokes))
+                per = [len(s) - len(d.strokes) for d, s in zip(demos, p.strokes)]
                 for b in np.argsort(per)[::-1][:6]:
                     panel = np.concatenate(
                         [

@@ -1,18 +1,26 @@
 """One place where any binary line image becomes the kind of line the planner knows.
 
 The planner learned from one rasteriser: 1-pixel, 8-connected lines with no
-staircase corners. Other rasterisers (Bresenham joints, anti-aliased lines
-thresholded), 2-4 pixel pens and 1-pixel breaks give it shapes it never saw,
-and it draws them as many short strokes. :func:`canonicalise` maps them to
-canonical lines, and leaves canonical lines as they are:
+staircase corners, drawn through finely sampled curves. Other rasterisers
+(OpenCV's polylines, anti-aliased lines thresholded), 2-5 pixel pens and
+1-pixel breaks give it shapes it never saw, and it draws them as many short
+strokes. :func:`canonicalise` maps them to canonical lines, and leaves
+canonical lines (nearly) as they are:
 
-1. thick ink (many full 2x2 blocks) is thinned to its centreline;
-2. staircase corners (a pixel whose only two neighbours touch diagonally) are
+1. thick ink (many full 2x2 blocks) becomes its centrelines
+   (:func:`thick_centrelines`): skeleton chains, with junctions that thinning
+   split merged, smoothed and redrawn with the demonstrations' curve rule;
+2. lumps on a line (pixels with 3+ neighbours where only one line passes,
+   like the triangle a polyline leaves at a joint) are thinned, while
+   junctions of 3+ lines are kept as drawn, since jdraw's own crossings and
+   overshooting corners look like that (:func:`thin_lumps`);
+3. staircase corners (a pixel whose only two neighbours touch diagonally) are
    dropped, since the line stays 8-connected without them;
-3. a 1-pixel break between two line ends that point at each other is filled.
+4. a 1-pixel break between two line ends that point at each other is filled.
 
-Pixels a plan draws then lie within 1 pixel of the input's ink, not on it:
-:func:`jdraw.metrics.tolerant_pixel_accuracy` scores plans of such inputs.
+Pixels a plan draws then lie within 1 pixel of the input's ink (of its
+centreline, for thick ink), not on it: :func:`jdraw.metrics.tolerant_pixel_accuracy`
+scores plans of such inputs. ``bench/canonical_variants.py`` measures it all.
 """
 
 from __future__ import annotations
@@ -101,8 +109,14 @@ def _end_heading(ink: np.ndarray, y: int, x: int, reach: int = 3) -> np.ndarray 
     return v / np.linalg.norm(v)
 
 
-def bridge_gaps(ink: np.ndarray, min_cos: float = 0.7) -> np.ndarray:
-    """Fills the pixel between two line ends 2 pixels apart that point at each other."""
+def bridge_gaps(ink: np.ndarray, min_cos: float = 0.3) -> np.ndarray:
+    """Fills the pixel between two line ends 2 pixels apart that point at each other.
+
+    Ends ``(2, 0)``, ``(2, 1)`` or ``(2, 2)`` pixels apart are joined by the
+    middle pixel of jdraw's segment between them (:func:`jdraw.raster.segment_pixels`).
+    """
+    from jdraw import raster
+
     deg = _degree(ink)
     ends = list(zip(*np.nonzero(ink & (deg == 1))))
     out = ink.copy()
@@ -110,9 +124,9 @@ def bridge_gaps(ink: np.ndarray, min_cos: float = 0.7) -> np.ndarray:
         for b in range(a + 1, len(ends)):
             (y0, x0), (y1, x1) = ends[a], ends[b]
             dy, dx = y1 - y0, x1 - x0
-            if max(abs(dy), abs(dx)) != 2 or (dy % 2) or (dx % 2):
+            if max(abs(dy), abs(dx)) != 2:
                 continue
-            my, mx = y0 + dy // 2, x0 + dx // 2
+            mx, my = raster.segment_pixels((x0, y0), (x1, y1))[1]
             if ink[my, mx]:
                 continue
             h0, h1 = _end_heading(ink, y0, x0), _end_heading(ink, y1, x1)
@@ -124,120 +138,49 @@ def bridge_gaps(ink: np.ndarray, min_cos: float = 0.7) -> np.ndarray:
     return out
 
 
-def canonicalise(ink) -> np.ndarray:
-    """``bool [H, W]`` canonical 1-pixel lines for any binary line image ``ink``."""
-    from skimage.morphology import skeletonize
-
-    ink = np.asarray(ink, bool)
-    if not ink.any():
-        return ink.copy()
-    if is_thick(ink):
-        ink = skeletonize(ink)
-    ink = drop_staircase_corners(ink)
-    return bridge_gaps(ink)
-
-
-# ----------------------------------------------------------------------------- experimental
-
-
 def _smooth(p: np.ndarray, sigma: float) -> np.ndarray:
-    """Gaussian-smoothed chain ``[n, 2]`` with its two ends pinned (point reflection)."""
-    r = int(np.ceil(2.5 * sigma))
-    if len(p) < 3 or r < 1:
-        return p.astype(np.float64)
-    k = np.exp(-0.5 * (np.arange(-r, r + 1) / sigma) ** 2)
-    k /= k.sum()
+    """``float [n, 2]`` chain ``p`` smoothed along its length, both ends pinned.
+
+    A Gaussian of ``sigma`` samples, the chain continued past each end by its
+    point reflection, so that straight chains stay straight up to the end.
+    """
     n = len(p)
-    r = min(r, n - 1)
+    r = min(int(np.ceil(2.5 * sigma)), n - 1)
+    if r < 1:
+        return p.astype(np.float64)
     k = np.exp(-0.5 * (np.arange(-r, r + 1) / sigma) ** 2)
     k /= k.sum()
     head = 2 * p[0] - p[r:0:-1]
     tail = 2 * p[-1] - p[-2 : -r - 2 : -1]
     q = np.concatenate([head, p, tail]).astype(np.float64)
-    out = np.stack([np.convolve(q[:, j], k, "valid") for j in range(2)], 1)
-    return out
+    return np.stack([np.convolve(q[:, j], k, "valid") for j in range(2)], 1)
 
 
 def _draw_curve(q: np.ndarray) -> np.ndarray:
-    """Pixels of a float polyline as jdraw's rasteriser draws a curve (fine samples, rounded)."""
-    from jdraw import demo
+    """``int64 [m, 2]`` pixels of a float polyline ``q [n, 2]`` (x, y) as jdraw draws a curve.
 
+    Samples 0.25 px apart are rounded to the nearest pixel, and a pixel whose
+    path neighbours touch (a staircase corner) is dropped, as
+    :func:`jdraw.demo.clean_path` does for demonstrations.
+    """
     seg = np.diff(q, axis=0)
-    ln = np.hypot(seg[:, 0], seg[:, 1])
-    s = np.concatenate([[0], np.cumsum(ln)])
-    t = np.arange(0, s[-1] + 1e-9, 0.25) if s[-1] > 0 else np.zeros(1)
-    t = np.append(t, s[-1])
-    x = np.interp(t, s, q[:, 0])
-    y = np.interp(t, s, q[:, 1])
-    pts = np.floor(np.stack([x, y], 1) + 0.5).astype(np.int64)
-    return demo.clean_path(pts)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(seg[:, 0], seg[:, 1]))])
+    t = np.append(np.arange(0.0, s[-1], 0.25), s[-1])
+    xy = np.floor(np.stack([np.interp(t, s, q[:, 0]), np.interp(t, s, q[:, 1])], 1) + 0.5)
+    xy = xy.astype(np.int64)
+    keep = np.ones(len(xy), bool)
+    keep[1:] = np.any(xy[1:] != xy[:-1], axis=1)
+    out: list[tuple[int, int]] = []
+    for x, y in xy[keep].tolist():
+        if len(out) >= 2 and abs(out[-2][0] - x) <= 1 and abs(out[-2][1] - y) <= 1:
+            out.pop()  # out[-1] was a corner: its path neighbours touch directly
+            if out[-1] == (x, y):
+                continue
+        out.append((x, y))
+    return np.asarray(out, np.int64).reshape(-1, 2)
 
 
-def redraw(ink: np.ndarray, sigma: float = 1.5) -> np.ndarray:
-    """Skeleton chains smoothed and redrawn with jdraw's curve rasteriser."""
-    from jdraw import image
-
-    pts, nbrs = image._neighbour_table(ink)
-    out = np.zeros_like(ink)
-    h, w = ink.shape
-    for chain in image._trace(nbrs):
-        p = pts[chain]
-        if len(p) < 4:
-            out[p[:, 1], p[:, 0]] = True
-            continue
-        q = _draw_curve(_smooth(p, sigma))
-        q[:, 0] = np.clip(q[:, 0], 0, w - 1)
-        q[:, 1] = np.clip(q[:, 1], 0, h - 1)
-        out[q[:, 1], q[:, 0]] = True
-    return out
-
-
-def canonicalise_v2(ink, sigma: float = 1.5) -> np.ndarray:
-    from skimage.morphology import skeletonize
-
-    ink = np.asarray(ink, bool)
-    if not ink.any():
-        return ink.copy()
-    sk = skeletonize(ink)
-    out = redraw(sk, sigma)
-    out = drop_staircase_corners(out)
-    return bridge_gaps(out)
-
-
-def canonicalise_sk(ink) -> np.ndarray:
-    from skimage.morphology import skeletonize
-
-    ink = np.asarray(ink, bool)
-    if not ink.any():
-        return ink.copy()
-    return bridge_gaps(drop_staircase_corners(skeletonize(ink)))
-
-
-def thin_lines(ink: np.ndarray, near: int = 2) -> np.ndarray:
-    """Skeletonises, then puts back what it removed within ``near`` px of a junction."""
-    from skimage.morphology import skeletonize
-
-    sk = skeletonize(ink)
-    junction = sk & (_degree(sk) >= 3)
-    k = np.ones((2 * near + 1, 2 * near + 1), np.uint8)
-    zone = cv2.dilate(junction.astype(np.uint8), k).astype(bool)
-    return sk | (ink & ~sk & zone)
-
-
-def canonicalise_t(ink) -> np.ndarray:
-    from skimage.morphology import skeletonize
-
-    ink = np.asarray(ink, bool)
-    if not ink.any():
-        return ink.copy()
-    if is_thick(ink):
-        ink = skeletonize(ink)
-    ink = thin_lines(ink)
-    ink = drop_staircase_corners(ink)
-    return bridge_gaps(ink)
-
-
-def thin_glitches(ink: np.ndarray) -> np.ndarray:
+def thin_lumps(ink: np.ndarray) -> np.ndarray:
     """Thins clusters of crowded pixels (3+ neighbours) that only a line passes through.
 
     A cluster with two ways out is a lump on one line (a staircase triangle, a
@@ -255,7 +198,11 @@ def thin_glitches(ink: np.ndarray) -> np.ndarray:
         x, y, bw, bh, _ = stats[c]
         y0, y1, x0, x1 = max(0, y - 1), min(h, y + bh + 1), max(0, x - 1), min(w, x + bw + 1)
         cl = lab[y0:y1, x0:x1] == c
-        ring = ink[y0:y1, x0:x1] & ~cl & cv2.dilate(cl.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+        ring = (
+            ink[y0:y1, x0:x1]
+            & ~cl
+            & cv2.dilate(cl.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+        )
         exits = cv2.connectedComponents(ring.astype(np.uint8), connectivity=8)[0] - 1
         if exits <= 2:
             lumps[y0:y1, x0:x1] |= cl
@@ -265,14 +212,83 @@ def thin_glitches(ink: np.ndarray) -> np.ndarray:
     return ink & ~(lumps & ~sk)
 
 
-def canonicalise_g(ink) -> np.ndarray:
+def thick_centrelines(ink: np.ndarray, merge: float = 1.0, sigma: float = 1.5) -> np.ndarray:
+    """``bool [H, W]`` centrelines of thick ink, drawn as jdraw draws curves.
+
+    The skeleton is cut into chains between ends and junctions. Two junctions
+    joined by a chain no longer than ``merge`` pen widths are one junction
+    that thinning split (a crossing, a stroke meeting a corner); the chain is
+    dropped and the others meet at the junctions' mean. Each chain is then
+    smoothed (``sigma`` pixels along it, ends pinned) and redrawn with the
+    curve rule of the demonstrations (:func:`_draw_curve`), which takes the
+    pen's wobble and the thinning's kinks out of the line.
+
+    Args:
+      ink: ``bool [H, W]`` lines more than one pixel wide.
+      merge: longest chain between two junctions merged away, pen widths.
+      sigma: smoothing along chains, pixels.
+    """
     from skimage.morphology import skeletonize
 
+    from jdraw import image
+
+    sk = skeletonize(ink)
+    width = image.stroke_width(ink, sk)
+    sk = image.prune_spurs(sk, image.ink_distance(ink), width)
+    pts, nbrs = image._neighbour_table(sk)
+    chains = image._trace(nbrs)
+    deg = np.array([len(n) for n in nbrs])
+    parent = list(range(len(pts)))
+
+    def find(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    dropped = set()
+    for k, ch in enumerate(chains):
+        ends_are_junctions = deg[ch[0]] >= 3 and deg[ch[-1]] >= 3 and ch[0] != ch[-1]
+        if len(ch) > 1 and ends_are_junctions and len(ch) - 1 <= merge * width:
+            parent[find(ch[0])] = find(ch[-1])
+            dropped.add(k)
+    members: dict[int, list[int]] = {}
+    for i in np.flatnonzero(deg >= 3):
+        members.setdefault(find(int(i)), []).append(int(i))
+    centre = {r: pts[m].mean(0) for r, m in members.items()}
+    radius = max(1.0, width / 2)
+    out = np.zeros_like(ink)
+    h, w = ink.shape
+    for k, ch in enumerate(chains):
+        if k in dropped:
+            continue
+        p = pts[ch].astype(np.float64)
+        for first in (True, False):
+            end = ch[0] if first else ch[-1]
+            if deg[end] < 3:
+                continue
+            # Leave the junction's lump; run the chain on to the merged junction's centre.
+            c = centre[find(end)]
+            q = p if first else p[::-1]
+            j = 0
+            while j < len(q) - 2 and np.max(np.abs(q[j] - c)) < radius:
+                j += 1
+            q = np.concatenate([c[None], q[j:]])
+            p = q if first else q[::-1]
+        if len(p) >= 4:
+            p = _smooth(p, sigma)
+        q = _draw_curve(p) if len(p) > 1 else np.floor(p + 0.5).astype(np.int64)
+        out[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)] = True
+    return out
+
+
+def canonicalise(ink) -> np.ndarray:
+    """``bool [H, W]`` canonical 1-pixel lines for any binary line image ``ink``."""
     ink = np.asarray(ink, bool)
     if not ink.any():
         return ink.copy()
     if is_thick(ink):
-        ink = skeletonize(ink)
-    ink = thin_glitches(ink)
+        ink = thick_centrelines(ink)
+    ink = thin_lumps(ink)
     ink = drop_staircase_corners(ink)
     return bridge_gaps(ink)

@@ -4,7 +4,7 @@ import cv2
 import numpy as np
 import pytest
 
-from jdraw import canonical, demo, evaluate, kanji, raster
+from jdraw import canonical, demo, evaluate, kanji, metrics, raster
 
 
 def _line(points, shape=(40, 40)):
@@ -76,3 +76,92 @@ def test_opencv_drawing_becomes_close_to_jdraw_drawing(kanji_set):
     for style in ("cv2", "thick3", "aa"):
         c = canonical.canonicalise(evaluate.rasterise(kanji_set, i, style))
         assert metrics.tolerant_pixel_accuracy(ref, c, 1) > 0.95, style
+
+
+def _ends_and_junctions(img):
+    """Line ends, junction clusters (8-connected pixels with 3+ neighbours) and components."""
+    deg = canonical._degree(img)
+    ends = int(np.count_nonzero(img & (deg == 1)))
+    junctions = cv2.connectedComponents((img & (deg >= 3)).astype(np.uint8), connectivity=8)[0]
+    parts = cv2.connectedComponents(img.astype(np.uint8), connectivity=8)[0]
+    return ends, junctions - 1, parts - 1
+
+
+@pytest.mark.parametrize("thickness", [2, 3])
+@pytest.mark.parametrize(
+    "shape, ends",
+    [
+        ("cross", 4),  # two strokes crossing: one junction, no spur
+        ("tee", 3),  # a stroke ending on another
+    ],
+)
+def test_thick_cross_and_tee_have_one_junction_and_no_spurs(thickness, shape, ends):
+    img = np.zeros((60, 60), np.uint8)
+    lines = {
+        "cross": [((10, 30), (50, 30)), ((30, 8), (30, 52))],
+        "tee": [((10, 12), (50, 12)), ((30, 12), (30, 52))],
+    }[shape]
+    for a, b in lines:
+        cv2.line(img, a, b, 255, thickness)
+    ink = img > 0
+    out = canonical.canonicalise(ink)
+    assert _ends_and_junctions(out) == (ends, 1, 1)
+    assert metrics.tolerant_pixel_accuracy(_line_union(lines), out, 1) > 0.97
+
+
+def _line_union(lines, shape=(60, 60)):
+    return raster.render_strokes([np.asarray(ab) for ab in lines], shape)
+
+
+def test_polyline_joints_are_thinned_to_one_path(kanji_set):
+    # OpenCV's polyline through points 1.5 px apart leaves lumps (pixels with three
+    # neighbours) at its joints; the planner reads those as junctions and stops there.
+    lumpy = paths = 0
+    for i in kanji.split_indices(kanji_set, "train")[:30]:
+        for c in kanji_set.strokes(int(i)):
+            img = np.zeros((100, 100), np.uint8)
+            pts = np.rint(kanji.sample_cubics(c, step=1.5)).astype(np.int32)
+            cv2.polylines(img, [pts.reshape(-1, 1, 2)], False, 255, 1, cv2.LINE_8)
+            ink = img > 0
+            if not (canonical._degree(ink)[ink] >= 3).any():
+                continue
+            lumpy += 1
+            paths += _ends_and_junctions(canonical.canonicalise(ink)) == (2, 0, 1)
+    assert lumpy >= 20  # the case is common
+    assert paths >= 0.8 * lumpy  # all but strokes that cross or retrace themselves
+
+
+@pytest.mark.parametrize("offset", [(2, 0), (2, 1), (2, 2), (1, 2)])
+def test_one_pixel_break_at_any_slope_is_filled(offset):
+    dx, dy = offset
+    a = _line([[4, 4], [4 + 6 * dx, 4 + 6 * dy]])
+    b = _line([[4 + 7 * dx, 4 + 7 * dy], [4 + 13 * dx, 4 + 13 * dy]])
+    out = canonical.canonicalise(a | b)
+    assert _ends_and_junctions(out) == (2, 0, 1)
+    assert (out & ~(a | b)).sum() == 1
+
+
+def test_one_pixel_break_at_a_corner_is_filled():
+    img = _line([[4, 10], [20, 10]]) | _line([[22, 12], [22, 30]])  # the corner pixel is gone
+    out = canonical.canonicalise(img)
+    assert _ends_and_junctions(out) == (2, 0, 1)
+
+
+def test_curve_rule_matches_demonstrations(kanji_set):
+    # Thick ink is redrawn with the demonstrations' own rule (jdraw.demo).
+    for c in kanji_set.strokes(int(kanji.split_indices(kanji_set, "train")[0])):
+        q = kanji.sample_cubics(c)
+        ref = demo.clean_path(np.floor(q + 0.5).astype(np.int64))
+        assert np.array_equal(canonical._draw_curve(q), ref)
+
+
+@pytest.mark.parametrize("thickness", [2, 3, 5])
+def test_thick_line_becomes_a_straight_jdraw_line(thickness):
+    img = np.zeros((60, 60), np.uint8)
+    cv2.line(img, (8, 10), (52, 31), 255, thickness)
+    out = canonical.canonicalise(img > 0)
+    assert _ends_and_junctions(out) == (2, 0, 1)
+    ref = _line([[8, 10], [52, 31]], (60, 60))
+    near = cv2.dilate(ref.astype(np.uint8), np.ones((3, 3), np.uint8)) > 0
+    assert not (out & ~near).any()  # within 1 px of the line jdraw draws
+    assert abs(int(out.sum()) - int(ref.sum())) <= thickness + 1  # ends a radius short at most

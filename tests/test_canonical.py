@@ -128,7 +128,7 @@ def test_polyline_joints_are_thinned_to_one_path(kanji_set):
             lumpy += 1
             paths += _ends_and_junctions(canonical.canonicalise(ink)) == (2, 0, 1)
     assert lumpy >= 20  # the case is common
-    assert paths >= 0.8 * lumpy  # all but strokes that cross or retrace themselves
+    assert paths >= 0.75 * lumpy  # all but strokes that cross or retrace themselves
 
 
 @pytest.mark.parametrize("offset", [(2, 0), (2, 1), (2, 2), (1, 2)])

@@ -7,9 +7,11 @@ staircase corners, drawn through finely sampled curves. Other rasterisers
 strokes. :func:`canonicalise` maps them to canonical lines, and leaves
 canonical lines (nearly) as they are:
 
-1. thick ink (many full 2x2 blocks) becomes its centrelines
-   (:func:`thick_centrelines`): skeleton chains, with junctions that thinning
-   split merged, smoothed and redrawn with the demonstrations' curve rule;
+1. thick ink (many full 2x2 blocks) and rough 1-pixel ink (lumps all along
+   its lines, as anti-aliased lines thresholded leave: :func:`is_rough`)
+   become centrelines (:func:`thick_centrelines`): skeleton chains, with
+   junctions that thinning split merged, smoothed and redrawn with the
+   demonstrations' curve rule;
 2. lumps on a line (pixels with 3+ neighbours where only one line passes,
    like the triangle a polyline leaves at a joint) are thinned, while
    junctions of 3+ lines are kept as drawn, since jdraw's own crossings and
@@ -210,28 +212,46 @@ def _simple_table() -> np.ndarray:
 _SIMPLE = _simple_table()
 
 
-def thin_lumps(ink: np.ndarray) -> np.ndarray:
-    """Thins clusters of crowded pixels (3+ neighbours) that only a line passes through.
+def _lumps(ink: np.ndarray):
+    """Clusters of crowded pixels (3+ neighbours) with at most two ways out.
 
-    A cluster with two ways out is a lump on one line (a staircase triangle, a
-    doubled pixel where a polyline bends); its pixels are removed one at a
-    time, in raster order, while removing one cuts nothing. A cluster with
-    three or more ways out is a junction and is kept as drawn.
+    Yields ``(y0, x0, mask)``: each cluster as a mask of the window at
+    ``(y0, x0)``. Such a cluster is a lump on one line (a staircase
+    triangle, a doubled pixel); one with three or more ways out is a junction.
     """
     crowded = ink & (_degree(ink) >= 3)
     if not crowded.any():
-        return ink
+        return
     n, lab, stats, _ = cv2.connectedComponentsWithStats(crowded.astype(np.uint8), connectivity=8)
     h, w = ink.shape
-    out = np.pad(ink, 1)
     for c in range(1, n):
         x, y, bw, bh, _ = stats[c]
         y0, y1, x0, x1 = max(0, y - 1), min(h, y + bh + 1), max(0, x - 1), min(w, x + bw + 1)
         cl = lab[y0:y1, x0:x1] == c
         near = cv2.dilate(cl.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         ring = ink[y0:y1, x0:x1] & ~cl & near
-        if cv2.connectedComponents(ring.astype(np.uint8), connectivity=8)[0] - 1 > 2:
-            continue
+        if cv2.connectedComponents(ring.astype(np.uint8), connectivity=8)[0] - 1 <= 2:
+            yield y0, x0, cl
+
+
+def is_rough(ink: np.ndarray, per_100: float = 1.0) -> bool:
+    """Whether 1-pixel ink has at least ``per_100`` lumps per 100 ink pixels.
+
+    jdraw's rasteriser leaves at most one in a character, OpenCV's polylines a
+    few; anti-aliased lines thresholded leave lumps all along (2-7 per 100 px).
+    """
+    n = np.count_nonzero(ink)
+    return n > 0 and sum(1 for _ in _lumps(ink)) >= per_100 * n / 100
+
+
+def thin_lumps(ink: np.ndarray) -> np.ndarray:
+    """Thins lumps on a line (:func:`_lumps`); junctions are kept as drawn.
+
+    A lump's pixels are removed one at a time, in raster order, while
+    removing one cuts nothing, so the line keeps its course.
+    """
+    out = np.pad(ink, 1)
+    for y0, x0, cl in _lumps(ink):
         for py, px in zip(*np.nonzero(cl)):
             py, px = py + y0 + 1, px + x0 + 1  # in the padded image
             code = sum(int(out[py + dy, px + dx]) << k for k, (dy, dx) in enumerate(_RING))
@@ -315,7 +335,7 @@ def canonicalise(ink) -> np.ndarray:
     ink = np.asarray(ink, bool)
     if not ink.any():
         return ink.copy()
-    if is_thick(ink):
+    if is_thick(ink) or is_rough(ink):
         ink = thick_centrelines(ink)
     ink = thin_lumps(ink)
     ink = drop_staircase_corners(ink)

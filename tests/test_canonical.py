@@ -165,3 +165,18 @@ def test_thick_line_becomes_a_straight_jdraw_line(thickness):
     near = cv2.dilate(ref.astype(np.uint8), np.ones((3, 3), np.uint8)) > 0
     assert not (out & ~near).any()  # within 1 px of the line jdraw draws
     assert abs(int(out.sum()) - int(ref.sum())) <= thickness + 1  # ends a radius short at most
+
+
+def test_antialiased_lines_are_redrawn_and_clean_lines_are_not(kanji_set):
+    # Anti-aliased lines thresholded are lumpy all along: they are redrawn from their
+    # skeleton like thick ink; jdraw's own lines are not touched that way.
+    rough = 0
+    for i in kanji.split_indices(kanji_set, "train")[:10]:
+        t = demo.sample(kanji_set, int(i)).target
+        assert not canonical.is_rough(t)
+        aa = evaluate.rasterise(kanji_set, int(i), "aa")
+        rough += canonical.is_rough(aa)
+        c = canonical.canonicalise(aa)
+        assert sum(1 for _ in canonical._lumps(c)) <= 2
+        assert metrics.tolerant_pixel_accuracy(t, c, 1) > 0.97
+    assert rough >= 8

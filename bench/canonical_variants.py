@@ -13,9 +13,10 @@ drawn/true strokes and tolerant pixel accuracy (:func:`jdraw.metrics.score`,
 ``tol=1``). About 1 s per character and style with planning on a 2-core CPU.
 
 Styles: ``clean`` (jdraw's rasteriser), ``cv2`` / ``aa`` (OpenCV 1-pixel
-LINE_8 / anti-aliased lines thresholded), ``thick2`` .. ``thick4`` (LINE_8
-pen of that width) and ``gap`` (cv2 with a 1-pixel break in each stroke
-longer than 12 pixels).
+LINE_8 / anti-aliased lines thresholded, as :func:`jdraw.evaluate.rasterise`),
+``thick2``, ``thick3``, ``thick5`` (LINE_8 with that ``thickness``: 3, 5
+and 7 pixels wide; OpenCV draws 4 as 3) and ``gap`` (cv2 with the pixel
+halfway along each stroke removed).
 """
 
 from __future__ import annotations

@@ -18,7 +18,8 @@ canonical lines (nearly) as they are:
    overshooting corners look like that (:func:`thin_lumps`);
 3. staircase corners (a pixel whose only two neighbours touch diagonally) are
    dropped, since the line stays 8-connected without them;
-4. a 1-pixel break between two line ends that point at each other is filled.
+4. a 1-pixel break between two line ends that point towards each other
+   (along a line or round a corner) is filled.
 
 Pixels a plan draws then lie within 1 pixel of the input's ink (of its
 centreline, for thick ink), not on it: :func:`jdraw.metrics.tolerant_pixel_accuracy`

@@ -13,9 +13,11 @@ canonical lines (nearly) as they are:
    junctions that thinning split merged, smoothed and redrawn with the
    demonstrations' curve rule;
 2. lumps on a line (pixels with 3+ neighbours where only one line passes,
-   like the triangle a polyline leaves at a joint) are thinned, while
-   junctions of 3+ lines are kept as drawn, since jdraw's own crossings and
-   overshooting corners look like that (:func:`thin_lumps`);
+   like the triangle a polyline leaves at a joint) are thinned where there
+   are two or more, while junctions of 3+ lines are kept as drawn, since
+   jdraw's own crossings look like that; a lone lump is kept too, as jdraw
+   draws one where a stroke overshoots the corner it meets
+   (:func:`thin_lumps`);
 3. staircase corners (a pixel whose only two neighbours touch diagonally) are
    dropped, since the line stays 8-connected without them;
 4. a 1-pixel break between two line ends that point towards each other
@@ -338,6 +340,9 @@ def canonicalise(ink) -> np.ndarray:
         return ink.copy()
     if is_thick(ink) or is_rough(ink):
         ink = thick_centrelines(ink)
-    ink = thin_lumps(ink)
+    if sum(1 for _ in _lumps(ink)) >= 2:
+        # One lump is most likely jdraw's own: a corner where a stroke overshoots the
+        # one it meets by a pixel (the planner's cue that two strokes meet there).
+        ink = thin_lumps(ink)
     ink = drop_staircase_corners(ink)
     return bridge_gaps(ink)

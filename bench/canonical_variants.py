@@ -19,9 +19,10 @@ and 7 pixels wide; OpenCV draws 4 as 3) and ``gap`` (cv2 with the pixel
 halfway along each stroke removed).
 
 Result (100 training characters, default model, ``tol=1``; stroke accuracy /
-drawn-to-true strokes / all-pairs order; canonicalise ms per character):
+drawn-to-true strokes / all-pairs order; canonicalise ms per character;
+"after" is 576a207, before a lone lump was kept as jdraw's own corner):
 
-  style    before (61e2254)          after                     ms
+  style    before (61e2254)          after (576a207)           ms
   clean    0.982 / 0.99 / 0.945      0.982 / 0.99 / 0.944      0.7
   cv2      0.917 / 1.10 / 0.933      0.964 / 1.01 / 0.929      1.2
   aa       0.529 / 2.55 / 0.923      0.962 / 0.98 / 0.869      5.7

@@ -15,8 +15,8 @@ canonical lines (nearly) as they are:
 2. lumps on a line (pixels with 3+ neighbours where only one line passes,
    like the triangle a polyline leaves at a joint) are thinned where there
    are two or more, while junctions of 3+ lines are kept as drawn, since
-   jdraw's own crossings look like that; a lone lump is kept too, as jdraw
-   draws one where a stroke overshoots the corner it meets
+   jdraw's own crossings look like that; a lone lump of 5+ pixels is kept
+   too, as jdraw draws one where a stroke overshoots the corner it meets
    (:func:`thin_lumps`);
 3. staircase corners (a pixel whose only two neighbours touch diagonally) are
    dropped, since the line stays 8-connected without them;
@@ -340,9 +340,10 @@ def canonicalise(ink) -> np.ndarray:
         return ink.copy()
     if is_thick(ink) or is_rough(ink):
         ink = thick_centrelines(ink)
-    if sum(1 for _ in _lumps(ink)) >= 2:
-        # One lump is most likely jdraw's own: a corner where a stroke overshoots the
-        # one it meets by a pixel (the planner's cue that two strokes meet there).
+    lumps = [cl for _, _, cl in _lumps(ink)]
+    if len(lumps) >= 2 or (lumps and np.count_nonzero(lumps[0]) < 5):
+        # A lone lump of 5+ pixels is most likely jdraw's own: a corner where a stroke
+        # overshoots the one it meets by a pixel (the planner's cue that two meet there).
         ink = thin_lumps(ink)
     ink = drop_staircase_corners(ink)
     return bridge_gaps(ink)

@@ -4,20 +4,20 @@ import cv2
 import numpy as np
 import pytest
 
-from jdraw import geometry as raster
+from jdraw import geometry
 from jdraw.data import demos as demo
 from jdraw.data import kanji
-from jdraw.evaluation import evaluate
+from jdraw.evaluation import evaluate, metrics
 from jdraw.images import canonical
 
 
 def _line(points, shape=(40, 40)):
-    return raster.render_strokes([np.asarray(points)], shape)
+    return geometry.render_strokes([np.asarray(points)], shape)
 
 
 def test_canonical_lines_are_left_as_they_are():
     # Demonstration paths (jdraw's rasteriser, staircase joints cleaned) are canonical.
-    path = demo.clean_path(raster.polyline_pixels(np.array([[3, 5], [30, 12], [20, 35]])))
+    path = demo.clean_path(geometry.polyline_pixels(np.array([[3, 5], [30, 12], [20, 35]])))
     img = np.zeros((40, 40), bool)
     img[path[:, 1], path[:, 0]] = True
     assert np.array_equal(canonical.canonicalise(img), img)
@@ -80,3 +80,125 @@ def test_opencv_drawing_becomes_close_to_jdraw_drawing(kanji_set):
     for style in ("cv2", "thick3", "aa"):
         c = canonical.canonicalise(evaluate.rasterise(kanji_set, i, style))
         assert metrics.tolerant_pixel_accuracy(ref, c, 1) > 0.95, style
+
+
+def _ends_and_junctions(img):
+    """Line ends, junction clusters (8-connected pixels with 3+ neighbours) and components."""
+    deg = canonical._degree(img)
+    ends = int(np.count_nonzero(img & (deg == 1)))
+    junctions = cv2.connectedComponents((img & (deg >= 3)).astype(np.uint8), connectivity=8)[0]
+    parts = cv2.connectedComponents(img.astype(np.uint8), connectivity=8)[0]
+    return ends, junctions - 1, parts - 1
+
+
+@pytest.mark.parametrize("thickness", [2, 3])
+@pytest.mark.parametrize(
+    "shape, ends",
+    [
+        ("cross", 4),  # two strokes crossing: one junction, no spur
+        ("tee", 3),  # a stroke ending on another
+    ],
+)
+def test_thick_cross_and_tee_have_one_junction_and_no_spurs(thickness, shape, ends):
+    img = np.zeros((60, 60), np.uint8)
+    lines = {
+        "cross": [((10, 30), (50, 30)), ((30, 8), (30, 52))],
+        "tee": [((10, 12), (50, 12)), ((30, 12), (30, 52))],
+    }[shape]
+    for a, b in lines:
+        cv2.line(img, a, b, 255, thickness)
+    ink = img > 0
+    out = canonical.canonicalise(ink)
+    assert _ends_and_junctions(out) == (ends, 1, 1)
+    assert metrics.tolerant_pixel_accuracy(_line_union(lines), out, 1) > 0.97
+
+
+def _line_union(lines, shape=(60, 60)):
+    return geometry.render_strokes([np.asarray(ab) for ab in lines], shape)
+
+
+def test_polyline_joints_are_thinned_to_one_path(kanji_set):
+    # OpenCV's polyline through points 1.5 px apart leaves lumps (pixels with three
+    # neighbours) at its joints; the planner reads those as junctions and stops there.
+    lumpy = paths = 0
+    for i in kanji.split_indices(kanji_set, "train")[:30]:
+        for c in kanji_set.strokes(int(i)):
+            img = np.zeros((100, 100), np.uint8)
+            pts = np.rint(kanji.sample_cubics(c, step=1.5)).astype(np.int32)
+            cv2.polylines(img, [pts.reshape(-1, 1, 2)], False, 255, 1, cv2.LINE_8)
+            ink = img > 0
+            if not (canonical._degree(ink)[ink] >= 3).any():
+                continue
+            lumpy += 1
+            paths += _ends_and_junctions(canonical.canonicalise(ink)) == (2, 0, 1)
+    assert lumpy >= 20  # the case is common
+    assert paths >= 0.75 * lumpy  # all but strokes that cross or retrace themselves
+
+
+@pytest.mark.parametrize("offset", [(2, 0), (2, 1), (2, 2), (1, 2)])
+def test_one_pixel_break_at_any_slope_is_filled(offset):
+    dx, dy = offset
+    a = _line([[4, 4], [4 + 6 * dx, 4 + 6 * dy]])
+    b = _line([[4 + 7 * dx, 4 + 7 * dy], [4 + 13 * dx, 4 + 13 * dy]])
+    out = canonical.canonicalise(a | b)
+    assert _ends_and_junctions(out) == (2, 0, 1)
+    assert (out & ~(a | b)).sum() == 1
+
+
+def test_one_pixel_break_at_a_corner_is_filled():
+    img = _line([[4, 10], [20, 10]]) | _line([[22, 12], [22, 30]])  # the corner pixel is gone
+    out = canonical.canonicalise(img)
+    assert _ends_and_junctions(out) == (2, 0, 1)
+
+
+def test_curve_rule_matches_demonstrations(kanji_set):
+    # Thick ink is redrawn with the demonstrations' own rule (jdraw.data.demos).
+    for c in kanji_set.strokes(int(kanji.split_indices(kanji_set, "train")[0])):
+        q = kanji.sample_cubics(c)
+        ref = demo.clean_path(np.floor(q + 0.5).astype(np.int64))
+        assert np.array_equal(canonical._draw_curve(q), ref)
+
+
+@pytest.mark.parametrize("thickness", [2, 3, 5])
+def test_thick_line_becomes_a_straight_jdraw_line(thickness):
+    img = np.zeros((60, 60), np.uint8)
+    cv2.line(img, (8, 10), (52, 31), 255, thickness)
+    out = canonical.canonicalise(img > 0)
+    assert _ends_and_junctions(out) == (2, 0, 1)
+    ref = _line([[8, 10], [52, 31]], (60, 60))
+    near = cv2.dilate(ref.astype(np.uint8), np.ones((3, 3), np.uint8)) > 0
+    assert not (out & ~near).any()  # within 1 px of the line jdraw draws
+    assert abs(int(out.sum()) - int(ref.sum())) <= thickness + 1  # ends a radius short at most
+
+
+def test_antialiased_lines_are_redrawn_and_clean_lines_are_not(kanji_set):
+    # Anti-aliased lines thresholded are lumpy all along: they are redrawn from their
+    # skeleton like thick ink; jdraw's own lines are not touched that way.
+    rough = 0
+    for i in kanji.split_indices(kanji_set, "train")[:10]:
+        t = demo.sample(kanji_set, int(i)).target
+        assert not canonical.is_rough(t)
+        aa = evaluate.rasterise(kanji_set, int(i), "aa")
+        rough += canonical.is_rough(aa)
+        c = canonical.canonicalise(aa)
+        assert sum(1 for _ in canonical._lumps(c)) <= 2
+        assert metrics.tolerant_pixel_accuracy(t, c, 1) > 0.97
+    assert rough >= 8
+
+
+def test_a_lone_lump_in_a_clean_drawing_is_kept(kanji_set):
+    # jdraw draws a lump where a stroke overshoots the corner it meets by a pixel: the
+    # planner's cue that two strokes meet there. A drawing with just one keeps it.
+    found = 0
+    for i in kanji.split_indices(kanji_set, "train")[:600]:
+        t = demo.sample(kanji_set, int(i)).target
+        lumps = list(canonical._lumps(t))
+        if len(lumps) != 1:
+            continue
+        found += 1
+        y0, x0, cl = lumps[0]
+        c = canonical.canonicalise(t)
+        assert c[y0 : y0 + cl.shape[0], x0 : x0 + cl.shape[1]][cl].all()
+        if found == 2:
+            break
+    assert found == 2

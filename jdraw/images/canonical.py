@@ -164,25 +164,16 @@ def _smooth(p: np.ndarray, sigma: float) -> np.ndarray:
 def _draw_curve(q: np.ndarray) -> np.ndarray:
     """``int64 [m, 2]`` pixels of a float polyline ``q [n, 2]`` (x, y) as jdraw draws a curve.
 
-    Samples 0.25 px apart are rounded to the nearest pixel, and a pixel whose
-    path neighbours touch (a staircase corner) is dropped, as
-    :func:`jdraw.data.demos.clean_path` does for demonstrations.
+    Samples 0.25 px apart are rounded to the nearest pixel and made a thin
+    path by :func:`jdraw.data.demos.clean_path`, as for demonstrations.
     """
+    from jdraw.data import demos
+
     seg = np.diff(q, axis=0)
     s = np.concatenate([[0.0], np.cumsum(np.hypot(seg[:, 0], seg[:, 1]))])
     t = np.append(np.arange(0.0, s[-1], 0.25), s[-1])
     xy = np.floor(np.stack([np.interp(t, s, q[:, 0]), np.interp(t, s, q[:, 1])], 1) + 0.5)
-    xy = xy.astype(np.int64)
-    keep = np.ones(len(xy), bool)
-    keep[1:] = np.any(xy[1:] != xy[:-1], axis=1)
-    out: list[tuple[int, int]] = []
-    for x, y in xy[keep].tolist():
-        if len(out) >= 2 and abs(out[-2][0] - x) <= 1 and abs(out[-2][1] - y) <= 1:
-            out.pop()  # out[-1] was a corner: its path neighbours touch directly
-            if out[-1] == (x, y):
-                continue
-        out.append((x, y))
-    return np.asarray(out, np.int64).reshape(-1, 2)
+    return demos.clean_path(xy.astype(np.int64))
 
 
 # The 8 neighbours in ring order (dy, dx); consecutive entries touch.

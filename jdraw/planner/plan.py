@@ -76,13 +76,13 @@ def load_model(checkpoint=None):
     if isinstance(checkpoint, nnx.Module):
         return checkpoint
     path = _folder(checkpoint)
-    if path is not None and not (path / "bundle.json").exists() and (path / "config.json").exists():
-        step = checkpoints.latest_step(path)
-        return _load_workdir(str(path.resolve()), -1 if step is None else step)
     if path is None:
         return _load(None, 0.0)
-    meta = pathlib.Path(path) / "bundle.json"
-    return _load(str(pathlib.Path(path).resolve()), meta.stat().st_mtime if meta.exists() else 0.0)
+    meta = path / "bundle.json"
+    if not meta.exists() and (path / "config.json").exists():
+        step = checkpoints.latest_step(path)
+        return _load_workdir(str(path.resolve()), -1 if step is None else step)
+    return _load(str(path.resolve()), meta.stat().st_mtime if meta.exists() else 0.0)
 
 
 @functools.lru_cache(maxsize=16)

@@ -83,15 +83,18 @@ def segment_pixels(a, b) -> np.ndarray:
 def polyline_pixels(points) -> np.ndarray:
     """8-connected pixel path through integer ``points`` ``[n, 2]`` (x, y).
 
+    Each segment is :func:`segment_pixels`, all of them computed at once.
     Returns ``[m, 2]`` int64, consecutive duplicates removed.
     """
     pts = np.asarray(points, np.int64).reshape(-1, 2)
-    if len(pts) == 0:
+    if len(pts) < 2:
         return pts
-    out = [pts[:1]]
-    for a, b in zip(pts[:-1], pts[1:]):
-        out.append(segment_pixels(a, b)[1:])
-    path = np.concatenate(out)
+    a, d = pts[:-1], np.diff(pts, axis=0)
+    n = np.abs(d).max(1)  # pixels each segment steps (0: none)
+    seg = np.repeat(np.arange(len(d)), n)
+    k = np.arange(len(seg)) - np.repeat(np.cumsum(n) - n, n) + 1  # 1 .. n of its segment
+    steps = a[seg] + _div_round_half_toward_zero(k[:, None] * d[seg], n[seg, None])
+    path = np.concatenate([pts[:1], steps])
     keep = np.ones(len(path), bool)
     keep[1:] = np.any(path[1:] != path[:-1], axis=1)
     return path[keep]

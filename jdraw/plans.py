@@ -54,24 +54,16 @@ def strokes_from_actions(actions: np.ndarray, length: int, start=(0, 0)) -> list
     The pen starts at ``start``; a run of ``touch=1`` rows is one stroke whose
     points are the position before the run and after each of its moves.
     """
-    pos = np.asarray(start, np.int64)
-    strokes: list[np.ndarray] = []
-    current: list[np.ndarray] | None = None
-    for dx, dy, touch in np.asarray(actions[:length], np.int64):
-        if touch:
-            if current is None:
-                current = [pos.copy()]
-            pos = pos + (dx, dy)
-            if dx or dy:
-                current.append(pos.copy())
-        else:
-            if current is not None:
-                strokes.append(np.asarray(current, np.float64))
-                current = None
-            pos = pos + (dx, dy)
-    if current is not None:
-        strokes.append(np.asarray(current, np.float64))
-    return strokes
+    a = np.asarray(actions[:length], np.int64).reshape(-1, 3)
+    after = np.asarray(start, np.int64) + np.cumsum(a[:, :2], axis=0)  # pen after each row
+    before = np.concatenate([np.asarray(start, np.int64)[None], after[:-1]])
+    touch = a[:, 2] != 0
+    edge = np.diff(np.concatenate([[0], touch.astype(np.int8), [0]]))
+    moved = np.any(a[:, :2] != 0, axis=1)
+    return [
+        np.concatenate([before[s : s + 1], after[s:e][moved[s:e]]]).astype(np.float64)
+        for s, e in zip(np.flatnonzero(edge == 1), np.flatnonzero(edge == -1))
+    ]
 
 
 def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:

@@ -34,21 +34,26 @@ def component_labels(target: np.ndarray) -> np.ndarray:
     return labels.astype(np.int32)
 
 
-def apply_move(visited: jax.Array, pen: jax.Array, d: jax.Array):
+def apply_move(visited: jax.Array, pen: jax.Array, d: jax.Array, on=True):
     """Moves the pen down by ``d``; returns ``(visited, new_pen, n_new)``.
 
     Args:
       visited: ``bool [H, W]``.
       pen: ``int32 [2]`` (x, y).
       d: ``int32 [2]`` with ``|d| <= 2``.
+      on: ``bool []``; when false nothing moves (``visited`` and ``pen`` come
+        back as they were, ``n_new`` is 0), written as two one-pixel updates
+        so a batch of slots updates in place.
     """
     mid = midpoint(pen, d)
     end = pen + d
-    n_new = (~visited[mid[1], mid[0]]).astype(jnp.int32) + (~visited[end[1], end[0]]) * jnp.any(
-        end != mid
-    ).astype(jnp.int32)
-    visited = visited.at[mid[1], mid[0]].set(True).at[end[1], end[0]].set(True)
-    return visited, end, n_new
+    # Both pixels are read, then written in one update (when ``end == mid``
+    # the two writes agree), so a batch of slots can update in place.
+    xs, ys = jnp.stack([mid[0], end[0]]), jnp.stack([mid[1], end[1]])
+    was = visited[ys, xs]
+    n_new = (~was[0]).astype(jnp.int32) + (~was[1] & jnp.any(end != mid)).astype(jnp.int32)
+    visited = visited.at[ys, xs].set(was | on)
+    return visited, jnp.where(on, end, pen), jnp.where(on, n_new, 0)
 
 
 def _local_channels(target, labels, visited, pen_label):
@@ -61,11 +66,22 @@ def local_state(target, labels, visited, pen) -> jax.Array:
     return _local_channels(target, labels, visited, labels[pen[1], pen[0]])
 
 
-def _crop(img: jax.Array, pen: jax.Array, size: int, fill=0) -> jax.Array:
-    """``[size, size]`` crop centred at ``pen``, zero (``fill``) outside the image."""
+def _window_index(pen: jax.Array, size: int, shape):
+    """Rows and columns (clipped onto the image) and ``inside`` of a window at ``pen``."""
     h = size // 2
-    padded = jnp.pad(img, h, constant_values=fill)
-    return jax.lax.dynamic_slice(padded, (pen[1], pen[0]), (size, size))
+    r = pen[1] - h + jnp.arange(size)
+    c = pen[0] - h + jnp.arange(size)
+    inside = ((r >= 0) & (r < shape[0]))[:, None] & ((c >= 0) & (c < shape[1]))[None, :]
+    return jnp.clip(r, 0, shape[0] - 1)[:, None], jnp.clip(c, 0, shape[1] - 1)[None, :], inside
+
+
+def _crop(img: jax.Array, pen: jax.Array, size: int, fill=0) -> jax.Array:
+    """``[size, size]`` crop centred at ``pen``, zero (``fill``) outside the image.
+
+    Read pixel by pixel, so a batch of slots never copies whole images.
+    """
+    r, c, inside = _window_index(pen, size, img.shape)
+    return jnp.where(inside, img[r, c], jnp.asarray(fill, img.dtype))
 
 
 def local_window(target, labels, visited, pen, size: int):
@@ -81,7 +97,7 @@ def local_window(target, labels, visited, pen, size: int):
     t = _crop(target, pen, size)
     lab = _crop(labels, pen, size)
     v = _crop(visited, pen, size)
-    inside = _crop(jnp.ones(target.shape, bool), pen, size)
+    inside = _window_index(pen, size, target.shape)[2]
     return _local_channels(t, lab, v, pen_label), inside
 
 

@@ -8,6 +8,7 @@ from jdraw import geometry
 from jdraw.data import demos as demo
 from jdraw.data import kanji
 from jdraw.planner import plan as api
+from jdraw.plans import actions_from_strokes, strokes_from_actions
 
 
 def test_segment_pixels_is_8_connected_and_symmetric_rule():
@@ -18,6 +19,31 @@ def test_segment_pixels_is_8_connected_and_symmetric_rule():
     # The local-move rule: the skipped pixel is a + sign(d) * (|d| // 2).
     np.testing.assert_array_equal(geometry.segment_pixels((5, 5), (6, 7))[1], (5, 6))
     np.testing.assert_array_equal(geometry.segment_pixels((5, 5), (4, 7))[1], (5, 6))
+
+
+def test_polyline_is_its_segments_joined(rng):
+    # The vectorised polyline equals segment_pixels run segment by segment.
+    for _ in range(200):
+        pts = rng.integers(-4, 30, size=(rng.integers(1, 7), 2))
+        pts[rng.random(len(pts)) < 0.2] = pts[0]  # zero-length segments too
+        ref = [pts[:1]] + [geometry.segment_pixels(a, b)[1:] for a, b in zip(pts[:-1], pts[1:])]
+        ref = np.concatenate(ref)
+        ref = ref[np.r_[True, np.any(ref[1:] != ref[:-1], axis=1)]]
+        np.testing.assert_array_equal(geometry.polyline_pixels(pts), ref)
+
+
+def test_actions_and_strokes_round_trip(rng):
+    for _ in range(100):
+        strokes = [
+            np.cumsum(rng.integers(-2, 3, size=(rng.integers(1, 6), 2)), 0) + rng.integers(0, 90, 2)
+            for _ in range(rng.integers(0, 5))
+        ]
+        strokes = [s[np.r_[True, np.any(s[1:] != s[:-1], axis=1)]] for s in strokes]
+        actions = actions_from_strokes(strokes)
+        back = strokes_from_actions(actions, len(actions))
+        assert len(back) == len(strokes)
+        for a, b in zip(back, strokes):
+            np.testing.assert_array_equal(a, b)
 
 
 def test_clean_path_is_thin_and_connected():

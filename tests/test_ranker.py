@@ -116,3 +116,17 @@ def test_flipped_tokens_equal_tokens_of_reversed_strokes(rng):
     np.testing.assert_array_equal(tk.feats, ref.feats)
     np.testing.assert_array_equal(tk.rfeats, ref.rfeats)
     np.testing.assert_array_equal(tk.rel, ref.rel)
+
+
+def test_characters_ordered_together_as_one_at_a_time(rng):
+    # order_many scores every character's strokes in fixed-size chunks, so a
+    # character's order and flips do not depend on what it is batched with.
+    model = ranker.Ranker(rngs=nnx.Rngs(2))
+    chars = [
+        [b[::-1] if rng.random() < 0.5 else b for b in _bars(rng, int(n))]  # either way round
+        for n in rng.integers(0, 20, 12)
+    ]
+    together = ranker.order_many(model, chars)
+    assert together == [ranker.order_strokes(model, c) for c in chars]
+    assert sum(len(c) ** 2 for c in chars) > ranker.CHUNK
+    assert any(any(f) for _, f in together) and any(o != sorted(o) for o, _ in together)

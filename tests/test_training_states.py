@@ -44,12 +44,12 @@ def recording_replay(record: dict) -> planner.Policy:
         jax.debug.callback(put(lambda a: (0, a[0])), stroke, x)
         return base.start(ctx, pst, target, visited, last, pen, has_pen, allowed)
 
-    def local(ctx, pst, lst, target, labels, visited, pen):
+    def observe(ctx, pst, target, labels, visited, pen):
         win, inside = S.local_window(target, labels, visited, pen, W)
         jax.debug.callback(put(lambda a: (1, a[0][0], a[0][1])), jnp.stack(pst[3:]), win, inside)
-        return base.local(ctx, pst, lst, target, labels, visited, pen)
+        return base.observe(ctx, pst, target, labels, visited, pen)
 
-    return planner.Policy(start, base.begin, local)
+    return planner.Policy(start, base.begin, observe, base.decide)
 
 
 def planner_states(d: D.Demo) -> dict:

@@ -46,13 +46,23 @@ class Policy(NamedTuple):
     (``last``: pixels visited since the previous global move; ``allowed``:
     where a stroke may start)
     ``begin(ctx, pstate) -> lstate`` (per-stroke local state, e.g. LSTM carry)
-    ``local(ctx, pstate, lstate, target, labels, visited, pen)
-    -> (move scores [25], lift bool, lstate, pstate)``
+    ``observe(ctx, pstate, target, labels, visited, pen) -> obs`` (what the
+    local step looks at: for the model, a small window around the pen)
+    ``decide(ctx, pstate, lstate, obs) -> (move scores [25], lift bool, lstate, pstate)``
+
+    A local step is ``decide(observe(...))`` (:meth:`local`); the two halves
+    are apart so the slot planner can batch ``decide`` over small
+    observations instead of whole canvases.
     """
 
     start: Callable
     begin: Callable
-    local: Callable
+    observe: Callable
+    decide: Callable
+
+    def local(self, ctx, pstate, lstate, target, labels, visited, pen):
+        obs = self.observe(ctx, pstate, target, labels, visited, pen)
+        return self.decide(ctx, pstate, lstate, obs)
 
 
 class Out(NamedTuple):
@@ -177,7 +187,10 @@ def replay_policy() -> Policy:
     def begin(ctx, pst):
         return ()
 
-    def local(ctx, pst, lst, *unused):
+    def observe(ctx, pst, *unused):
+        return ()
+
+    def decide(ctx, pst, lst, obs):
         starts, moves, nm, s, k = pst
         lift = k >= nm[s]
         d = moves[s, jnp.minimum(k, moves.shape[1] - 1)]
@@ -185,7 +198,7 @@ def replay_policy() -> Policy:
         nxt = (starts, moves, nm, jnp.where(lift, s + 1, s), jnp.where(lift, 0, k + 1))
         return scores, lift, lst, nxt
 
-    return Policy(start, begin, local)
+    return Policy(start, begin, observe, decide)
 
 
 def model_policy(local_encoding: str = "window") -> Policy:
@@ -208,15 +221,20 @@ def model_policy(local_encoding: str = "window") -> Policy:
     def begin(model, pst):
         return model.core.init_carry()
 
-    def local(model, pst, carry, target, labels, visited, pen):
+    def observe(model, pst, target, labels, visited, pen):
         if local_encoding == "window":
-            win, inside = S.local_window(target, labels, visited, pen, model.window)
+            return S.local_window(target, labels, visited, pen, model.window)
+        return S.local_state(target, labels, visited, pen), pen
+
+    def decide(model, pst, carry, obs):
+        if local_encoding == "window":
+            win, inside = obs
             feat = model.local_features(win[None], inside[None])[0]
         else:
-            x = S.local_state(target, labels, visited, pen)
+            x, pen = obs
             feat = model.local_features_full(x[None], pen[None])[0]
         carry, h = model.core.step(carry, model.core.project(feat))
         move, touch = model.heads(h)
         return move, touch < 0.0, carry, pst
 
-    return Policy(start, begin, local)
+    return Policy(start, begin, observe, decide)

@@ -19,7 +19,6 @@ plan inks exactly the same pixels.
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import pathlib
 
@@ -27,174 +26,18 @@ import jax
 import numpy as np
 from flax import nnx
 
-from jdraw import geometry
+from jdraw.planner.stroke_tokens import (  # noqa: F401 (the ranker's inputs, named here too)
+    PAIR_FEATURES,
+    STROKE_FEATURES,
+    Tokens,
+    flipped,
+    pair_inputs,
+    path_pixels,
+    stroke_features,
+    stroke_masks,
+    tokens,
+)
 from jdraw.plans import actions_from_strokes
-
-STROKE_FEATURES = 20
-PAIR_FEATURES = 3 * STROKE_FEATURES + 9
-
-
-def _pixels(points) -> np.ndarray:
-    """``int64 [m, 2]`` 8-connected pixel path of a stroke's points."""
-    p = np.rint(np.asarray(points, float)).astype(np.int64).reshape(-1, 2)
-    d = np.diff(p, axis=0)
-    if len(d) == 0 or np.abs(d).max() > 2:
-        return geometry.polyline_pixels(p)
-    # Local moves (|d| <= 2) skip at most one pixel: the line rule's midpoint.
-    mid = p[:-1] + np.sign(d) * (np.abs(d) // 2)
-    path = np.stack([mid, p[1:]], 1).reshape(-1, 2)
-    path = np.concatenate([p[:1], path])
-    keep = np.ones(len(path), bool)
-    keep[1:] = np.any(path[1:] != path[:-1], axis=1)
-    return path[keep]
-
-
-def stroke_masks(strokes, shape=(geometry.CANVAS, geometry.CANVAS)) -> np.ndarray:
-    """``bool [S, H, W]`` one image per stroke (as :func:`jdraw.geometry.render_strokes`)."""
-    out = np.zeros((len(strokes), *shape), bool)
-    for k, s in enumerate(strokes):
-        p = _pixels(s)
-        out[k, p[:, 1], p[:, 0]] = True
-    return out
-
-
-def stroke_features(path: np.ndarray, box: np.ndarray) -> np.ndarray:
-    """``float32 [STROKE_FEATURES]`` of one stroke.
-
-    Args:
-      path: ``[m, 2]`` (x, y) pixel path in drawing order.
-      box: ``[4]`` the character's ink box (x0, y0, x1, y1).
-    """
-    p = np.asarray(path, np.float64)
-    s, e = p[0], p[-1]
-    c = p.mean(0)
-    lo, hi = p.min(0), p.max(0)
-    n = len(p)
-    k = min(3, n - 1)
-    head = p[k] - p[0]
-    tail = p[-1] - p[-1 - k]
-    unit = lambda v: v / max(np.linalg.norm(v), 1e-6)
-    size = np.maximum(box[2:] - box[:2], 1.0)
-    rel = lambda q: (q - box[:2]) / size
-    f = np.concatenate(
-        [
-            s / 100,
-            e / 100,
-            c / 100,
-            lo / 100,
-            hi / 100,
-            unit(e - s),
-            unit(head),
-            unit(tail),
-            [n / 100],
-            rel(s),
-            [np.linalg.norm(e - s) / max(n, 1)],
-        ]
-    )
-    return f.astype(np.float32)
-
-
-@dataclasses.dataclass
-class Tokens:
-    """A character's strokes as tokens.
-
-    Attributes:
-      paths: ``S`` pixel paths ``[m_i, 2]`` in their drawn direction.
-      feats: ``float32 [S, STROKE_FEATURES]``.
-      rfeats: ``float32 [S, STROKE_FEATURES]``, the same strokes reversed.
-      rel: ``float32 [S, S, 9]`` relations of stroke pairs.
-    """
-
-    paths: list[np.ndarray]
-    feats: np.ndarray
-    rfeats: np.ndarray
-    rel: np.ndarray
-
-
-def _relations(paths: list[np.ndarray]) -> np.ndarray:
-    """``float32 [S, S, 9]``: how stroke ``i`` relates to stroke ``j``."""
-    n = len(paths)
-    allp = np.concatenate(paths)
-    h, w = int(allp[:, 1].max()) + 2, int(allp[:, 0].max()) + 2
-    masks = np.zeros((n, h, w), bool)
-    for k, p in enumerate(paths):
-        masks[k, p[:, 1], p[:, 0]] = True
-    near = masks.copy()  # 3x3 dilation
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            near[:, max(dy, 0) : h + min(dy, 0), max(dx, 0) : w + min(dx, 0)] |= masks[
-                :, max(-dy, 0) : h + min(-dy, 0), max(-dx, 0) : w + min(-dx, 0)
-            ]
-    inner = masks.copy()
-    for k, p in enumerate(paths):
-        inner[k, p[0, 1], p[0, 0]] = inner[k, p[-1, 1], p[-1, 0]] = False
-    m = masks.reshape(n, -1).astype(np.float32)
-    touch = (m @ near.reshape(n, -1).T.astype(np.float32)) > 0
-    cross = (inner.reshape(n, -1).astype(np.float32) @ m.T) > 0
-    s = np.array([p[0] for p in paths])
-    e = np.array([p[-1] for p in paths])
-    s_on = near[:, s[:, 1], s[:, 0]].T  # [i, j]: i's start near j
-    e_on = near[:, e[:, 1], e[:, 0]].T
-    lo = np.array([p.min(0) for p in paths], float)
-    hi = np.array([p.max(0) for p in paths], float)
-    ov = np.maximum(0, np.minimum(hi[:, None], hi[None]) - np.maximum(lo[:, None], lo[None]) + 1)
-    span = np.maximum(1, np.minimum((hi - lo)[:, None], (hi - lo)[None]) + 1)
-    holds = np.all(lo[:, None] <= lo[None], -1) & np.all(hi[:, None] >= hi[None], -1)
-    rel = np.stack(
-        [
-            touch,
-            s_on,
-            e_on,
-            s_on.T,
-            e_on.T,
-            cross,
-            ov[..., 0] / span[..., 0],
-            ov[..., 1] / span[..., 1],
-            holds,
-        ],
-        -1,
-    ).astype(np.float32)
-    rel[np.arange(n), np.arange(n)] = 0
-    return rel
-
-
-def tokens(strokes) -> Tokens:
-    """Tokens of strokes given as lists of ``[n, 2]`` points (a plan's or a demo's)."""
-    paths = [_pixels(s) for s in strokes]
-    if not paths:
-        z = np.zeros((0, STROKE_FEATURES), np.float32)
-        return Tokens([], z, z, np.zeros((0, 0, 9), np.float32))
-    allp = np.concatenate(paths)
-    box = np.concatenate([allp.min(0), allp.max(0)]).astype(np.float64)
-    feats = np.stack([stroke_features(p, box) for p in paths])
-    rfeats = np.stack([stroke_features(p[::-1], box) for p in paths])
-    return Tokens(paths, feats, rfeats, _relations(paths))
-
-
-def flipped(tk: Tokens, flip) -> Tokens:
-    """The tokens of the same strokes with ``flip[i]`` ones drawn backwards.
-
-    Equals :func:`tokens` of the reversed paths without recomputing it: a
-    stroke's features and its reversed features trade places, and its
-    "starts on" / "ends on" relations swap; the rest does not depend on
-    direction.
-    """
-    f = np.asarray(flip, bool)
-    rel = tk.rel.copy()
-    rel[f, :, 1], rel[f, :, 2] = tk.rel[f, :, 2], tk.rel[f, :, 1]
-    rel[:, f, 3], rel[:, f, 4] = tk.rel[:, f, 4], tk.rel[:, f, 3]
-    return Tokens(
-        [p[::-1] if fl else p for p, fl in zip(tk.paths, f)],
-        np.where(f[:, None], tk.rfeats, tk.feats),
-        np.where(f[:, None], tk.feats, tk.rfeats),
-        rel,
-    )
-
-
-def pair_inputs(feats: np.ndarray, rel: np.ndarray, i, j) -> np.ndarray:
-    """``float32 [K, PAIR_FEATURES]`` for index arrays ``i``, ``j`` of stroke pairs."""
-    a, b = feats[i], feats[j]
-    return np.concatenate([a, b, a - b, rel[i, j]], -1).astype(np.float32)
 
 
 class _MLP(nnx.Module):
@@ -238,6 +81,19 @@ def _pair_net(graphdef, st, x):
     return nnx.merge(graphdef, st).pair_net(x)
 
 
+CHUNK = 256  # rows per network call: one shape, compiled once, whatever the strokes
+
+
+def _chunked(fn, g, st, *xs) -> np.ndarray:
+    """``fn(g, st, *rows)`` over the rows of ``xs``, ``CHUNK`` rows a call."""
+    n = len(xs[0])
+    out = [
+        np.asarray(fn(g, st, *(_pad(x[k : k + CHUNK], CHUNK) for x in xs)))
+        for k in range(0, n, CHUNK)
+    ]
+    return np.concatenate(out)[:n] if out else np.zeros(0, np.float32)
+
+
 def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
     """The order and the flips the ranker chooses for one character's strokes.
 
@@ -245,20 +101,40 @@ def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
       ``(order, flip)``: ``order`` lists stroke indices in drawing order;
       ``flip[i]`` says stroke ``i`` is to be drawn backwards.
     """
-    n = len(strokes)
-    if n == 0:
-        return [], []
-    tk = tokens(strokes)
+    return order_many(ranker, [strokes])[0]
+
+
+def order_many(ranker: Ranker, characters) -> list[tuple[list[int], list[bool]]]:
+    """:func:`order_strokes` for many characters, their strokes scored together.
+
+    Every stroke and stroke pair is scored in calls of ``CHUNK`` rows, so a
+    character's scores do not depend on the others it is batched with.
+    """
     g, st = nnx.split(ranker)
-    # Bucket the stroke count so a new count seldom recompiles.
-    size = 1 << max(1, int(np.ceil(np.log2(max(n, 2)))))
-    h = _headings(g, st, _pad(tk.feats, size), _pad(tk.rfeats, size))
-    flip = [bool(v < 0) for v in np.asarray(h)[:n]]
-    tk = flipped(tk, flip)
-    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-    net = np.asarray(
-        _pair_net(g, st, _pad(pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()), size * size))
-    )[: n * n].reshape(n, n)
+    tks = [tokens(s) for s in characters]
+    counts = [len(s) for s in characters]
+    cat = lambda xs, width: np.concatenate(xs) if xs else np.zeros((0, width), np.float32)
+    h = _chunked(
+        _headings,
+        g,
+        st,
+        cat([tk.feats for tk in tks], STROKE_FEATURES),
+        cat([tk.rfeats for tk in tks], STROKE_FEATURES),
+    )
+    flips = np.split(h < 0, np.cumsum(counts)[:-1])
+    tks = [flipped(tk, f) for tk, f in zip(tks, flips)]
+    pairs = []
+    for tk, n in zip(tks, counts):
+        i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+        pairs.append(pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()))
+    net = _chunked(_pair_net, g, st, cat(pairs, PAIR_FEATURES))
+    nets = np.split(net, np.cumsum([n * n for n in counts])[:-1])
+    return [(_order(v.reshape(n, n)), [bool(x) for x in f]) for v, n, f in zip(nets, counts, flips)]
+
+
+def _order(net: np.ndarray) -> list[int]:
+    """Stroke order from the pair network's scores ``net [n, n]``."""
+    n = len(net)
     logit = net - net.T  # Ranker.pair: the score of (a, b) minus that of (b, a)
     np.fill_diagonal(logit, 0.0)
     prob = 1.0 / (1.0 + np.exp(-logit))
@@ -274,7 +150,7 @@ def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
                 changed = True
         if not changed:
             break
-    return [int(k) for k in order], flip
+    return [int(k) for k in order]
 
 
 def _pad(x: np.ndarray, rows: int) -> np.ndarray:
@@ -294,7 +170,7 @@ def reverse(points) -> np.ndarray:
     p = np.rint(np.asarray(points, float)).astype(np.int64).reshape(-1, 2)
     d = np.diff(p, axis=0)
     if len(d) and np.abs(d).max() > 2:
-        return _pixels(p)[::-1].astype(np.float64)
+        return path_pixels(p)[::-1].astype(np.float64)
     out = [p[-1]]
     for k in range(len(p) - 1, 0, -1):
         a, b = p[k - 1], p[k]  # drawn a -> b; now b -> a
@@ -370,12 +246,13 @@ def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | Non
     if method == "ranker" and ranker is None:
         raise ValueError("order='ranker' needs a ranker; this checkpoint has none")
     strokes = []
-    for s in plan.strokes:
+    chosen = order_many(ranker, plan.strokes) if method == "ranker" else None
+    for b, s in enumerate(plan.strokes):
         if method == "xy":
             order = sorted(range(len(s)), key=lambda k: (s[k][0][0] + s[k][0][1], k))
             strokes.append([s[k] for k in order])
         else:
-            order, flip = order_strokes(ranker, s)
+            order, flip = chosen[b]
             out = apply_order(s, order, flip)
             if max_rows is not None and len(actions_from_strokes(out)) > max_rows:
                 out = apply_order(s, order, [False] * len(s))

@@ -7,19 +7,26 @@ Each slot holds one image and its state machine::
          +------- stroke ends, ink left ----+---- stroke ends, no ink left --> DONE
 
 The state machine is written once, for one image (:func:`load`, :func:`start`,
-:func:`move`, with :func:`_settle` deciding when a stroke ends); it is the same
-as :func:`jdraw.planner.loop.run`'s, so the actions are identical to planning each
-image alone. Batching happens in one place, :func:`stream`'s ``step``:
+:func:`observe` and :func:`move`, with :func:`_settle` deciding when a stroke
+ends); it is the same as :func:`jdraw.planner.loop.run`'s, so the actions are
+identical to planning each image alone. Batching happens in one place,
+:func:`stream`'s ``step``:
 
-* a finished slot takes the next image of the queue;
 * the global model runs on a small fixed-size sub-batch (``global_batch``) of
   the slots that need a start, gathered and scattered back; the others wait.
   It runs only once the sub-batch can be filled (or every live slot waits),
   so the expensive whole-canvas encoder is rarely run on padding;
-* the local model moves every moving slot once.
+* the local model decides for the moving slots only: each slot's observation
+  (a small window at the pen) is cut out, the moving ones gathered into the
+  narrowest of a few fixed widths that holds them, decided together and
+  scattered back; each slot then applies its decision;
+* a finished slot hands its plan over and takes the next image of the queue.
 
-A step's cost is one global sub-batch (when due) and one local batch, not the
-batch's longest stroke, and no image waits for another to finish.
+A step's cost is one global sub-batch (when due) and one local batch about
+as wide as the slots that move, not the batch's longest stroke, and no image
+waits for another to finish. Each part touches a few rows or pixels of the
+big per-slot arrays, which XLA then updates in place: a step never copies
+the whole slot batch.
 """
 
 from __future__ import annotations
@@ -53,6 +60,7 @@ class Image(NamedTuple):
     moves: jax.Array  # [] int32, moves in this stroke
     idle: jax.Array  # [] int32, moves in a row that inked nothing new
     new: jax.Array  # [] int32, pixels this stroke inked
+    left: jax.Array  # [] int32, ink pixels not yet visited
     lstate: Any  # the policy's per-stroke state
     pstate: Any  # the policy's carried state
     index: jax.Array  # [] int32, position in the queue; -1 for none
@@ -81,7 +89,7 @@ def _write(actions, n, row, on=True):
 
 
 def _remaining(s: Image):
-    return jnp.any(s.target & ~s.visited)
+    return s.left > 0
 
 
 def _settle(s: Image, lifted, limits: Limits) -> Image:
@@ -123,6 +131,7 @@ def load(policy: Policy, ctx, pstate, target, labels, index, max_steps: int) -> 
         moves=z,
         idle=z,
         new=z,
+        left=target.sum(dtype=jnp.int32),
         lstate=policy.begin(ctx, pstate),
         pstate=pstate,
         index=jnp.asarray(index, jnp.int32),
@@ -136,6 +145,7 @@ def start(policy: Policy, ctx, s: Image, limits: Limits) -> Image:
     xy = xy.astype(jnp.int32)
     actions, n = _write(s.actions, s.n, jnp.stack([xy[0] - s.pen[0], xy[1] - s.pen[1], 0]))
     z = jnp.int32(0)
+    new = (~s.visited[xy[1], xy[0]] & s.target[xy[1], xy[0]]).astype(jnp.int32)
     s = s._replace(
         visited=s.visited.at[xy[1], xy[0]].set(True),
         last=jnp.zeros_like(s.last).at[xy[1], xy[0]].set(True),
@@ -148,42 +158,73 @@ def start(policy: Policy, ctx, s: Image, limits: Limits) -> Image:
         moves=z,
         idle=z,
         new=(~s.visited[xy[1], xy[0]]).astype(jnp.int32),
+        left=s.left - new,
         lstate=policy.begin(ctx, pst),
         pstate=pst,
     )
     return _settle(s, jnp.bool_(False), limits)
 
 
-def move(policy: Policy, ctx, s: Image, limits: Limits) -> Image:
-    """One local step: a pen-down move, or lift (end the stroke)."""
-    scores, lift, lst, pst = policy.local(
-        ctx, s.pstate, s.lstate, s.target, s.labels, s.visited, s.pen
-    )
+def observe(policy: Policy, ctx, s: Image):
+    """What the local step looks at (for the model, a small window at the pen)."""
+    return policy.observe(ctx, s.pstate, s.target, s.labels, s.visited, s.pen)
+
+
+def move(s: Image, decision, limits: Limits) -> Image:
+    """One local step from the policy's ``decision``: a pen-down move, or lift (end the stroke).
+
+    ``decision`` is ``policy.decide``'s ``(move scores [25], lift, lstate, pstate)``.
+    An image that is not moving is left as it is; the updates are a few
+    pixels and one action row, so a batch of slots changes in place.
+    """
+    scores, lift, lst, pst = decision
+    on = s.phase == MOVING
     ok = S.allowed_moves(s.target, s.pen)
     lift = lift | ~jnp.any(ok)
     d = jnp.asarray(geometry.MOVES, jnp.int32)[jnp.argmax(jnp.where(ok, scores, -jnp.inf))]
-    visited, pen, n_new = S.apply_move(s.visited, s.pen, d)
-    last, _, _ = S.apply_move(s.last, s.pen, d)
-    actions, n = _write(s.actions, s.n, jnp.stack([d[0], d[1], 1]), ~lift)
-    keep = lambda old, nw: jnp.where(lift, old, nw)
+    down = on & ~lift
+    visited, pen, n_new = S.apply_move(s.visited, s.pen, d, down)
+    last, _, _ = S.apply_move(s.last, s.pen, d, down)
+    actions, n = _write(s.actions, s.n, jnp.stack([d[0], d[1], 1]), down)
+    keep = lambda old, nw: jax.tree.map(lambda a, b: jnp.where(on, b, a), old, nw)
     s = s._replace(
-        visited=keep(s.visited, visited),
-        last=keep(s.last, last),
-        pen=keep(s.pen, pen),
+        visited=visited,
+        last=last,
+        pen=pen,
         actions=actions,
         n=n,
-        k=s.k + 1,
-        moves=s.moves + (~lift).astype(jnp.int32),
-        idle=jnp.where(lift, s.idle, jnp.where(n_new > 0, 0, s.idle + 1)),
-        new=s.new + jnp.where(lift, 0, n_new),
-        lstate=lst,
-        pstate=pst,
+        k=s.k + on.astype(jnp.int32),
+        moves=s.moves + down.astype(jnp.int32),
+        idle=jnp.where(down, jnp.where(n_new > 0, 0, s.idle + 1), s.idle),
+        new=s.new + n_new,
+        left=s.left - n_new,  # a move goes along ink only (`allowed_moves`)
+        lstate=keep(s.lstate, lst),
+        pstate=keep(s.pstate, pst),
     )
     return _settle(s, lift, limits)
 
 
 # ----------------------------------------------------------------------------
 # The slot batch: the one place where batching happens.
+
+
+def _when(pred, f, x):
+    """``f(x)`` if ``pred`` else ``x``, updating ``x``'s buffers in place.
+
+    A loop run once or not at all: unlike ``lax.cond``, XLA carries a loop's
+    buffers through without copying the untouched branch's whole state.
+    """
+    return jax.lax.while_loop(lambda c: c[0], lambda c: (False, f(c[1])), (pred, x))[1]
+
+
+def local_widths(width: int) -> list[int]:
+    """The local model's batch widths for ``width`` slots: 2, 4, then steps of ``width / 8``.
+
+    A step runs the narrowest that holds its moving slots, so little work is
+    padding; a width of 1 costs more on CPU than a width of 2.
+    """
+    step = max(1, width // 8)
+    return sorted({min(w, width) for w in (2, 4, *range(step, width + 1, step))})
 
 
 def stream(
@@ -219,7 +260,8 @@ def stream(
     q = targets.shape[0]
     width = max(1, min(slots, q))
     k_glob = max(1, min(global_batch, width))
-    widths = sorted({max(1, width // 8), max(1, width // 2), width})
+    widths = local_widths(width)
+    refills = max(1, width // 8)
     each = lambda f: jax.vmap(lambda s: f(policy, ctx, s, limits))
     loads = jax.vmap(lambda t, lab, i: load(policy, ctx, pstate, t, lab, i, limits.max_steps))
 
@@ -231,71 +273,79 @@ def stream(
     def save(out, s: Image, mask):
         dst = jnp.where(mask & (s.index >= 0), s.index, q)  # q: dropped
         acts, lens, trunc = out
+        # A refilled slot's rows past ``n`` still hold its earlier image's.
+        written = jnp.arange(limits.max_steps)[None, :, None] < s.n[:, None, None]
         return (
-            acts.at[dst].set(s.actions, mode="drop"),
+            acts.at[dst].set(jnp.where(written, s.actions, 0), mode="drop"),
             lens.at[dst].set(s.n, mode="drop"),
             trunc.at[dst].set(jax.vmap(_remaining)(s), mode="drop"),
         )
 
-    def rows(mask, new, old):
-        return jax.tree.map(
-            lambda a, b: jnp.where(mask.reshape(mask.shape + (1,) * (a.ndim - 1)), a, b), new, old
-        )
+    def gather(s, pick):
+        return jax.tree.map(lambda a: a[pick], s)
 
+    def scatter(s, dst, new, keep=()):  # rows at ``dst``; ``width`` drops the row
+        put = lambda a, b: a.at[dst].set(b, mode="drop")
+        fields = [f for f in s._fields if f not in keep]
+        return s._replace(**{f: jax.tree.map(put, getattr(s, f), getattr(new, f)) for f in fields})
+
+    # Each part of a step touches a few rows of the slot batch: gathered,
+    # changed and scattered back, so the big per-slot arrays are updated in
+    # place and never copied whole.
     def step(c):
         s, nxt, wait, out, stats = c
-        # Finished slots hand their plan over and take the next images.
-        free = s.phase == DONE
-        i = nxt + jnp.cumsum(free) - 1
-        take = free & (i < count)
-
-        def refill(args):
-            s, out = args
-            return rows(take, fetch(i), s), save(out, s, take)
-
-        s, out = jax.lax.cond(take.any(), refill, lambda a: a, (s, out))
-        nxt = nxt + take.sum()
-
         # Global model: the longest-waiting slots that need a start, K at a time.
         need = s.phase == NEEDS_START
         live = (s.phase != DONE).sum()
         due = need.any() & (need.sum() >= jnp.minimum(k_glob, live))
         prio, pick = jax.lax.top_k(jnp.where(need, wait, -1), k_glob)
-        dst = jnp.where(prio >= 0, pick, width)  # width: dropped
-
-        def starts(s):
-            done = each(start)(jax.tree.map(lambda a: a[pick], s))
-            return jax.tree.map(lambda a, b: a.at[dst].set(b, mode="drop"), s, done)
-
-        s = jax.lax.cond(due, starts, lambda s: s, s)
+        dst = jnp.where(prio >= 0, pick, width)
+        s = _when(due, lambda s: scatter(s, dst, each(start)(gather(s, pick))), s)
         wait = jnp.where(s.phase == NEEDS_START, wait + 1, 0)
 
-        # Local model: every moving slot moves once, gathered into the smallest
-        # of a few fixed widths that holds them (a batch's tail runs narrow).
+        # Local model: every moving slot moves once. Each slot's observation
+        # (a small window) is cut out; the moving slots' observations are
+        # gathered into the smallest of a few fixed widths that holds them
+        # (a batch's tail runs narrow), decided together and scattered back.
         moving = s.phase == MOVING
         n_moving = moving.sum()
         size = jnp.searchsorted(jnp.asarray(widths), n_moving)
+        decide = jax.vmap(lambda pst, lst, obs: policy.decide(ctx, pst, lst, obs))
 
-        def moves(w):
-            def f(s):
+        def decided(w):
+            def f(inputs):
                 if w == width:
-                    return rows(moving, each(move)(s), s)
+                    return decide(*inputs)
                 _, pick = jax.lax.top_k(moving.astype(jnp.int32), w)
-                done = each(move)(jax.tree.map(lambda a: a[pick], s))
-                dst = jnp.where(moving[pick], pick, width)  # width: dropped
-                return jax.tree.map(lambda a, b: a.at[dst].set(b, mode="drop"), s, done)
+                out = decide(*gather(inputs, pick))
+                # Rows of slots that are not moving are never read (`move` skips them).
+                return jax.tree.map(
+                    lambda a: jnp.zeros((width, *a.shape[1:]), a.dtype).at[pick].set(a), out
+                )
 
             return f
 
-        s = jax.lax.cond(
-            n_moving > 0,
-            lambda s: jax.lax.switch(size, [moves(w) for w in widths], s),
-            lambda s: s,
-            s,
-        )
+        inputs = (s.pstate, s.lstate, jax.vmap(lambda s: observe(policy, ctx, s))(s))
+        decision = jax.lax.switch(size, [decided(w) for w in widths], inputs)
+        s = jax.vmap(lambda s, d: move(s, d, limits))(s, decision)
+
+        # Finished slots hand their plan over and take the next images, a few a step.
+        free = s.phase == DONE
+        _, pick = jax.lax.top_k(free.astype(jnp.int32), refills)
+        i = nxt + jnp.cumsum(free[pick]) - 1
+        take = free[pick] & (i < count)
+
+        def refill(args):
+            s, out = args
+            out = save(out, gather(s, pick), take)
+            # A new image's action rows are not cleared: ``save`` reads only ``n`` of them.
+            return scatter(s, jnp.where(take, pick, width), fetch(i), keep=("actions",)), out
+
+        s, out = _when(take.any(), refill, (s, out))
+        nxt = nxt + take.sum()
 
         n_starts = jnp.where(due, (prio >= 0).sum(), 0)
-        rows_run = jnp.where(n_moving > 0, jnp.asarray(widths)[size], 0)
+        rows_run = jnp.asarray(widths)[size]
         work = [n_starts, due, n_moving, rows_run, 1]
         stats = stats + jnp.stack(work).astype(jnp.int32)
         return s, nxt, wait, out, stats

@@ -47,12 +47,10 @@ def get_config() -> ml_collections.ConfigDict:
         dict(
             init_from="jdraw/checkpoints/default",
             train_local=True,
-            learning_rate=1e-3,
             global_batch=1,
             global_per_char=1,
             global_weight=0.0,
             num_steps=3600,
-            log_every=20,
             checkpoint_every=200,
         )
     )

@@ -42,8 +42,7 @@ def apply_move(visited: jax.Array, pen: jax.Array, d: jax.Array, on=True):
       pen: ``int32 [2]`` (x, y).
       d: ``int32 [2]`` with ``|d| <= 2``.
       on: ``bool []``; when false nothing moves (``visited`` and ``pen`` come
-        back as they were, ``n_new`` is 0), written as two one-pixel updates
-        so a batch of slots updates in place.
+        back as they were, ``n_new`` is 0).
     """
     mid = midpoint(pen, d)
     end = pen + d

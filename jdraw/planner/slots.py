@@ -145,7 +145,7 @@ def start(policy: Policy, ctx, s: Image, limits: Limits) -> Image:
     xy = xy.astype(jnp.int32)
     actions, n = _write(s.actions, s.n, jnp.stack([xy[0] - s.pen[0], xy[1] - s.pen[1], 0]))
     z = jnp.int32(0)
-    new = (~s.visited[xy[1], xy[0]] & s.target[xy[1], xy[0]]).astype(jnp.int32)
+    new = (~s.visited[xy[1], xy[0]]).astype(jnp.int32)
     s = s._replace(
         visited=s.visited.at[xy[1], xy[0]].set(True),
         last=jnp.zeros_like(s.last).at[xy[1], xy[0]].set(True),
@@ -157,8 +157,8 @@ def start(policy: Policy, ctx, s: Image, limits: Limits) -> Image:
         k=z,
         moves=z,
         idle=z,
-        new=(~s.visited[xy[1], xy[0]]).astype(jnp.int32),
-        left=s.left - new,
+        new=new,
+        left=s.left - new * s.target[xy[1], xy[0]],
         lstate=policy.begin(ctx, pst),
         pstate=pst,
     )
@@ -221,7 +221,8 @@ def local_widths(width: int) -> list[int]:
     """The local model's batch widths for ``width`` slots: 2, 4, then steps of ``width / 8``.
 
     A step runs the narrowest that holds its moving slots, so little work is
-    padding; a width of 1 costs more on CPU than a width of 2.
+    padding (1 only when there is one slot: a one-row tail step pads a row
+    rather than compile one more width).
     """
     step = max(1, width // 8)
     return sorted({min(w, width) for w in (2, 4, *range(step, width + 1, step))})

@@ -19,18 +19,8 @@ PAIR_FEATURES = 3 * STROKE_FEATURES + 9
 
 
 def path_pixels(points) -> np.ndarray:
-    """``int64 [m, 2]`` 8-connected pixel path of a stroke's points."""
-    p = np.rint(np.asarray(points, float)).astype(np.int64).reshape(-1, 2)
-    d = np.diff(p, axis=0)
-    if len(d) == 0 or np.abs(d).max() > 2:
-        return geometry.polyline_pixels(p)
-    # Local moves (|d| <= 2) skip at most one pixel: the line rule's midpoint.
-    mid = p[:-1] + np.sign(d) * (np.abs(d) // 2)
-    path = np.stack([mid, p[1:]], 1).reshape(-1, 2)
-    path = np.concatenate([p[:1], path])
-    keep = np.ones(len(path), bool)
-    keep[1:] = np.any(path[1:] != path[:-1], axis=1)
-    return path[keep]
+    """``int64 [m, 2]`` 8-connected pixel path of a stroke's points (the one line rule)."""
+    return geometry.polyline_pixels(np.rint(np.asarray(points, float)).astype(np.int64))
 
 
 def stroke_masks(strokes, shape=(geometry.CANVAS, geometry.CANVAS)) -> np.ndarray:

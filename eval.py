@@ -27,7 +27,9 @@ _FULL = flags.DEFINE_bool("full_test", True, "Also score the whole test split (1
 _BATCH = flags.DEFINE_integer("batch", 32, "Planning batch size.")
 _SEED = flags.DEFINE_integer("seed", 0, "Which random characters.")
 _VARIANTS = flags.DEFINE_list(
-    "variants", ["cv2", "thick3"], "Other drawings of the test split (cv2, thick3, aa)."
+    "variants",
+    ["cv2", "px3", "thick3"],
+    "Other drawings of the test split (cv2, px3, px5, thick3 = px5, aa).",
 )
 _VCHARS = flags.DEFINE_integer("variant_chars", None, "Test characters for the variants (all).")
 _CANON = flags.DEFINE_bool(

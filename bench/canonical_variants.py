@@ -49,7 +49,7 @@ from jdraw.io import figures
 from jdraw.planner import plan as api
 from jdraw.planner import ranker
 
-STYLES = ("clean", "cv2", "aa", "thick2", "thick3", "thick5", "gap")
+STYLES = ("clean", "cv2", "aa", "thick2", "thick3", "thick5", "gap")  # thick2: 3 px wide
 
 
 def draw(ks: kanji.KanjiSet, i: int, style: str, d: demo.Demo) -> np.ndarray:
@@ -90,6 +90,7 @@ def main() -> None:
     ap.add_argument("--styles", default=",".join(STYLES))
     ap.add_argument("--plan", action=argparse.BooleanOptionalAction, default=True)
     ap.add_argument("--fn", default="canonicalise", help="function of jdraw.images.canonical")
+    ap.add_argument("--checkpoint", default=None, help="bundle folder (default: the bundled)")
     ap.add_argument("--dump", default="", help="folder for PNGs of the worst characters")
     args = ap.parse_args()
 
@@ -97,7 +98,7 @@ def main() -> None:
     idx = kanji.split_indices(ks, args.split)
     idx = np.random.default_rng(1).choice(idx, args.n, replace=False)
     demos = [demo.sample(ks, int(i)) for i in idx]
-    rk = api.load_ranker(None)
+    rk = api.load_ranker(args.checkpoint)
     rows = []
     for style in args.styles.split(","):
         inputs = np.stack([draw(ks, int(i), style, d) for i, d in zip(idx, demos)])
@@ -122,7 +123,7 @@ def main() -> None:
             "same": float(np.mean([np.array_equal(d.target, c) for d, c in zip(demos, canon)])),
         }
         if args.plan:
-            p = api.plan(canon, order="model", canonicalise=False)
+            p = api.plan(canon, checkpoint=args.checkpoint, order="model", canonicalise=False)
             p = ranker.reorder(p, "ranker", rk)
             s = metrics.score(demos, p, inputs, tol=0 if style == "clean" else 1)
             row.update(

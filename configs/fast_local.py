@@ -13,24 +13,20 @@ steps, about 100,000 strokes). The start model is the bundled default's
 (copied in from jdraw/checkpoints/default; its loss weight is 0, so it does
 not move).
 
-Status (session 5): not used anywhere yet. The run was still going when the
-session ended; the same command resumes it. Wall time: 2,400 steps in about
-40 min on the 2-core CPU (about 0.75 s a step alone, 2 s beside a CI run).
-Interim result at step 2,400, exported with jdraw.export and given the
-default's ranker (ranker.npz, ranker.json copied in):
+Wall time: 3,600 steps in about 60 min of training-loop time on the 2-core
+CPU (about 0.75 s a step alone; the run was stopped and resumed three times
+and shared the CPU with evaluations part of the time). Bundled as
+jdraw/checkpoints/fast_local (jdraw.export of the run, with the default's
+ranker.npz and ranker.json copied in); configs/robust.py starts from it.
 
-  python eval.py --checkpoint BUNDLE --name fl_2400 --n 1 --variants=
+  python eval.py --checkpoint jdraw/checkpoints/fast_local --name beyond_fast_local \
+      --n 1 --variants=cv2,px3,thick3
 
-whole test split (1,000 characters), ranker order: stroke accuracy 0.9730
-(default 0.9747), pixel 0.9999, order over all pairs 0.9297 (default
-0.9332), matched pairs 0.9606, exact order 0.323, direction 0.9949. At step
-1,200, on 100 random test characters, stroke accuracy was 0.9590.
-
-  python bench/global_cost.py --chars 32 --ours BUNDLE
-
-(the training run paused): `jdraw.plan` at batch 1, 21.10 characters/s
-against the paper's model's 10.00 in the same run, 2.11x; global step 0.200
-of the paper's by time, 0.082 by FLOPs.
+whole test split, ranker order: stroke accuracy 0.9739 (the paper's local
+model with the same start model and ranker: 0.9747), order over all pairs
+0.9265 (0.9332), matched pairs 0.9588, exact order 0.316, direction 0.9952,
+pixel 0.9999; OpenCV 1-pixel lines 0.9583 stroke accuracy, 3-pixel lines
+0.8765, 5-pixel lines 0.8146 (results/beyond_fast_local.json).
 """
 
 import ml_collections

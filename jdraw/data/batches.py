@@ -15,9 +15,18 @@ import numpy as np
 from jdraw import geometry
 from jdraw import state as S
 from jdraw.data import demos as D
+from jdraw.data import variants
 from jdraw.data.kanji import KanjiSet
 
 CANVAS = geometry.CANVAS
+
+
+def _sample(ks: KanjiSet, pool, rng, strength: float, styles) -> D.Demo:
+    """A random character of ``pool``: jdraw's own lines, or a style of ``styles``."""
+    i = int(rng.choice(pool))
+    if not styles:
+        return D.sample(ks, i, rng, strength)
+    return variants.sample(ks, i, rng, strength, styles)
 
 
 def _union(strokes) -> np.ndarray:
@@ -34,6 +43,7 @@ def local_batch(
     max_len: int,
     per_char: int,
     strength: float,
+    styles: dict | None = None,
 ) -> dict:
     """Packs random strokes of random characters into ``windows`` slots.
 
@@ -44,6 +54,9 @@ def local_batch(
       ``move`` int32 [B, T] move labels, ``touch`` float32 [B, T],
       ``valid`` bool [B, T], ``slot_b``/``slot_t`` int32 [windows],
       ``slot_valid`` bool [windows], ``n_strokes`` int.
+
+    ``styles`` (``{style: probability}``, :func:`jdraw.data.variants.sample`)
+    draws characters other ways too; None keeps jdraw's own lines.
     """
     out = {
         "target": np.zeros((strokes, CANVAS, CANVAS), bool),
@@ -61,7 +74,7 @@ def local_batch(
     b = used = 0
     full = False
     while not full:
-        d = D.sample(ks, int(rng.choice(pool)), rng, strength)
+        d = _sample(ks, pool, rng, strength, styles)
         labels = S.component_labels(d.target)
         picks = rng.permutation(len(d.strokes))[:per_char]
         for i in sorted(picks):
@@ -112,11 +125,13 @@ def global_batch(
     size: int,
     strength: float,
     per_char: int = 1,
+    styles: dict | None = None,
 ) -> dict:
     """States before a random stroke and that stroke's start.
 
     ``per_char`` states (before distinct strokes) come from each sampled
-    character: making the character is most of the host's cost.
+    character: making the character is most of the host's cost. ``styles``
+    as for :func:`local_batch`.
 
     Returns numpy arrays: ``target``, ``visited``, ``last`` bool [G, 100, 100],
     ``pen`` int32 [G, 2], ``has_pen`` bool [G], ``start`` int32 [G] (flat
@@ -125,7 +140,7 @@ def global_batch(
     out = global_state_arrays(size, start=np.int32)
     picks: list[tuple[D.Demo, int]] = []
     while len(picks) < size:
-        d = D.sample(ks, int(rng.choice(pool)), rng, strength)
+        d = _sample(ks, pool, rng, strength, styles)
         if per_char == 1:  # the paper config's exact data order
             picks.append((d, int(rng.integers(len(d.strokes)))))
         else:

@@ -2,12 +2,13 @@
 
   python -m jdraw.evaluation.beyond [--results results] [--out results/beyond.md]
 
-Reads the ``eval.py`` results of the paper's model (``paper.json``, scored
-with our ranker too) and of ours (``ours.json``) and writes a Markdown table:
+Reads the ``eval.py`` results ``beyond_{name}[_clean|_variants].json`` of the
+paper's model (``paper``, scored with our ranker too) and of ours (``ours``,
+``fast_local``, ``robust``) and writes a Markdown table:
 for each planner and stroke order, order agreement over matched pairs and
 over all pairs, exact order, direction, stroke and pixel accuracy and drawn /
 true strokes on the whole KanjiVG test split, and stroke accuracy and
-drawn / true strokes on the split drawn by OpenCV and with a 3-px pen.
+drawn / true strokes on the split drawn by OpenCV 1 pixel, 3 and 5 pixels wide.
 """
 
 from __future__ import annotations
@@ -22,8 +23,14 @@ ROWS = (
     ("paper", "ranker", "paper's model + learned stroke ranker"),
     ("ours", "model", "ours: whole-canvas start model, as traced"),
     ("ours", "xy", "ours, strokes sorted by start x + y"),
-    ("ours", "ranker", "ours + learned stroke ranker (bundled default)"),
+    ("ours", "ranker", "ours + learned stroke ranker"),
+    ("fast_local", "ranker", "ours, smaller local model (configs/fast_local.py) + ranker"),
+    ("robust", "model", "ours, robust local model (configs/robust.py), as traced"),
+    ("robust", "ranker", "ours, robust local model + ranker (bundled default)"),
 )
+
+# Files merged per planner, later ones overriding: whole test split, then other drawings.
+_PARTS = ("beyond_{}.json", "beyond_{}_clean.json", "beyond_{}_variants.json")
 
 
 def _cell(res: dict, split: str, order: str, key: str, fmt: str = "{:.4f}") -> str:
@@ -35,15 +42,18 @@ def _cell(res: dict, split: str, order: str, key: str, fmt: str = "{:.4f}") -> s
 
 def table(results_dir) -> str:
     d = pathlib.Path(results_dir)
-    res = {
-        n: json.loads((d / f"beyond_{n}.json").read_text())
-        for n in ("paper", "ours")
-        if (d / f"beyond_{n}.json").exists()
-    }
+    res: dict = {}
+    for n in dict.fromkeys(name for name, _, _ in ROWS):
+        for part in _PARTS:
+            f = d / part.format(n)
+            if f.exists():
+                res.setdefault(n, {}).update(json.loads(f.read_text()))
     head = (
         "| planner and order | order, matched pairs | order, all pairs | exact order | "
         "direction | stroke acc | pixel acc | strokes / true | OpenCV: stroke acc, strokes / "
-        "true | 3-px pen: stroke acc, strokes / true |\n" + "| --- " * 10 + "|"
+        "true | 3-px lines: stroke acc, strokes / true | 5-px lines: stroke acc, strokes / true |\n"
+        + "| --- " * 11
+        + "|"
     )
     lines = [head]
     for name, order, label in ROWS:
@@ -57,6 +67,7 @@ def table(results_dir) -> str:
             f"{c('test_full', 'direction_agreement')} | {c('test_full', 'stroke_acc')} | "
             f"{c('test_full', 'pixel_acc')} | {c('test_full', 'stroke_ratio', '{:.3f}')} | "
             f"{c('test_cv2', 'stroke_acc')}, {c('test_cv2', 'stroke_ratio', '{:.3f}')} | "
+            f"{c('test_px3', 'stroke_acc')}, {c('test_px3', 'stroke_ratio', '{:.3f}')} | "
             f"{c('test_thick3', 'stroke_acc')}, {c('test_thick3', 'stroke_ratio', '{:.3f}')} |"
         )
     return "\n".join(lines) + "\n"

@@ -5,8 +5,9 @@ reordering (:func:`jdraw.planner.ranker.reorder`): the learned ranker where the
 checkpoint has one, and the x + y sort of the plan's own strokes as a
 reference rule. Besides KanjiVG as our rasteriser draws it, the test split is
 drawn by OpenCV (``cv2``: 1-pixel polylines through the curves, with the
-staircase joints of a common rasteriser) and with a 3-pixel pen (``thick3``),
-and scored with a 1-pixel tolerance (:func:`jdraw.evaluation.metrics.score`).
+staircase joints of a common rasteriser), with lines 3 pixels wide (``px3``)
+and with OpenCV's ``thickness=3`` (``thick3``: lines 5 pixels wide), and
+scored with a 1-pixel tolerance (:func:`jdraw.evaluation.metrics.score`).
 """
 
 from __future__ import annotations
@@ -15,34 +16,32 @@ import json
 import pathlib
 import time
 
-import cv2
 import numpy as np
 
 from jdraw.data import demos as demo
-from jdraw.data import kanji
+from jdraw.data import kanji, variants
 from jdraw.evaluation import metrics
 from jdraw.io import figures
 from jdraw.planner import plan as api
 from jdraw.planner import ranker
 
-VARIANTS = ("cv2", "thick3")
+VARIANTS = ("cv2", "px3", "thick3")
 
 
 def rasterise(ks: kanji.KanjiSet, i: int, style: str) -> np.ndarray:
     """``bool [100, 100]`` character ``i`` drawn by OpenCV in ``style``.
 
-    Styles: ``"cv2"`` 1-pixel 8-connected polylines through points 1.5 px
-    apart along the curves; ``"thick3"`` the same with a 3-pixel pen;
-    ``"aa"`` anti-aliased 1-pixel lines thresholded at half intensity.
+    Styles (:data:`jdraw.data.variants.STYLES`): ``"cv2"`` 1-pixel
+    8-connected polylines through points 1.5 px apart along the curves;
+    ``"px3"`` / ``"px5"`` the same 3 and 5 pixels wide; ``"aa"`` anti-aliased
+    1-pixel lines thresholded at half intensity. ``"thick3"`` is ``"px5"``
+    under the name ``results/`` has used since it was added (OpenCV's
+    ``thickness=3``, which draws lines 5 pixels across).
     """
-    img = np.zeros((100, 100), np.uint8)
-    thickness, line = {"cv2": (1, cv2.LINE_8), "thick3": (3, cv2.LINE_8), "aa": (1, cv2.LINE_AA)}[
-        style
-    ]
-    for c in ks.strokes(i):
-        pts = np.rint(kanji.sample_cubics(c, step=1.5)).astype(np.int32)
-        cv2.polylines(img, [pts.reshape(-1, 1, 2)], False, 255, thickness, line)
-    return img >= 128
+    return variants.draw(ks.strokes(i), _ALIASES.get(style, style))
+
+
+_ALIASES = {"thick3": "px5"}
 
 
 def plan_chars(

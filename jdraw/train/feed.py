@@ -29,6 +29,8 @@ def make_batch(ks, pool, cfg, step: int) -> tuple[dict, int]:
     """
     rng = np.random.default_rng([int(cfg.seed), int(step)])
     t = cfg.train
+    styles = cfg.data.get("styles", None)
+    styles = {str(k): float(v) for k, v in styles.items()} if styles else None
     if cfg.model.get("kind", "two_scale") == "global_only":
         g = global_only.batch(ks, pool, rng, size=t.global_batch, strength=cfg.data.augment)
         return {"global_only": g}, t.global_batch
@@ -41,6 +43,7 @@ def make_batch(ks, pool, cfg, step: int) -> tuple[dict, int]:
             size=t.global_batch,
             strength=cfg.data.augment,
             per_char=int(t.get("global_per_char", 1)),
+            styles=styles,
         )
 
     if not t.get("train_local", True):
@@ -54,6 +57,7 @@ def make_batch(ks, pool, cfg, step: int) -> tuple[dict, int]:
         max_len=t.max_len,
         per_char=t.strokes_per_char,
         strength=cfg.data.augment,
+        styles=styles,
     )
     n = lb.pop("n_strokes")
     return {"local": lb, "global": global_part()}, n

@@ -20,7 +20,7 @@ import optax
 from flax import nnx
 
 from jdraw.data import demos as demo
-from jdraw.data import kanji
+from jdraw.data import kanji, variants
 from jdraw.planner import ranker
 
 
@@ -116,8 +116,9 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     """Labelled examples in chunks of ``cfg.chunk`` augmented training characters.
 
     ``cfg.chars`` characters are planned by the tracer (its own noisy
-    strokes); ``cfg.get("demo_chars", 0)`` more contribute KanjiVG's strokes
-    as they are. One npz per chunk, written whole or not at all.
+    strokes), drawn as ``cfg.get("styles")`` says if given
+    (:func:`jdraw.data.variants.sample`); ``cfg.get("demo_chars", 0)`` more
+    contribute KanjiVG's strokes as they are. One npz per chunk, written whole or not at all.
     """
     from jdraw.planner import plan as api
 
@@ -139,8 +140,12 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
         if path.exists():
             continue
         rng = np.random.default_rng([int(cfg.seed), k, int(kind == "demo")])
+        styles = cfg.get("styles", None) if kind == "traced" else None
+        styles = {str(a): float(b) for a, b in styles.items()} if styles else None
         demos = [
             demo.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment))
+            if styles is None
+            else variants.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment), styles)
             for _ in range(cfg.chunk)
         ]
         if kind == "traced":

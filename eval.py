@@ -1,15 +1,15 @@
 """Evaluates a checkpoint on KanjiVG as the paper's §IV-A.
 
-  python eval.py --name beyond_ours        # the bundled default (ours)
+  python eval.py --name beyond_robust --n 1   # the bundled default
   python eval.py --checkpoint jdraw/checkpoints/paper --name beyond_paper \
-      --ranker jdraw/checkpoints/default
+      --ranker jdraw/checkpoints/ours
   python eval.py --checkpoint jdraw/checkpoints/paper --name paper --nocanonicalise \
       --variants=   # Table I, row 1, as measured
 
 Writes results/NAME.json (pixel/stroke accuracy, stroke order over matched
 and over all pairs, exact order, direction, drawn/true strokes, on 100 random
 train and test characters, the whole test split, and the test split drawn by
-OpenCV and with a 3-px pen; each as traced, x + y sorted and, where the
+OpenCV 1, 3 and 5 pixels wide; each as traced, x + y sorted and, where the
 checkpoint has a ranker, ranked) and results/NAME_fig3.png.
 """
 

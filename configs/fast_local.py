@@ -10,7 +10,8 @@ that, not the global step, now bounds planning one character at a time. This
 config trains a local model with a narrower last block (32 channels, so 5x5x32
 features) and a 128-wide LSTM, from scratch, on the paper's budget (3,600
 steps, about 100,000 strokes). The start model is the bundled default's
-(copied in from jdraw/checkpoints/default; its loss weight is 0, so it does
+(copied in from jdraw/checkpoints/ours, the bundled default until
+configs/robust.py; its loss weight is 0, so it does
 not move).
 
 Wall time: 3,600 steps in about 60 min of training-loop time on the 2-core
@@ -41,7 +42,7 @@ def get_config() -> ml_collections.ConfigDict:
     c.model.blocks = ((16, 16), (16, 16), (16, 32), (32, 32))
     c.train.update(
         dict(
-            init_from="jdraw/checkpoints/default",
+            init_from="jdraw/checkpoints/ours",
             train_local=True,
             global_batch=1,
             global_per_char=1,

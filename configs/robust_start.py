@@ -10,7 +10,11 @@ computed) on the same mix of drawings, canonicalised, with KanjiVG's strokes
 laid onto them (jdraw.data.variants): 32 stroke starts a step, 4 from each
 character, Adam 2e-4.
 
-Status: see the docstring's result once the run is done.
+Wall time: 300 steps (9,600 stroke starts) in 2 min 15 s of training-loop
+time on the 2-core CPU. Validation (48 characters, as traced): order over all
+pairs 0.826 -> 0.886, stroke accuracy 0.966, direction 0.988. The bundle
+(runs/robust_start/bundle) with the ranker of configs/ranker_robust.py is
+jdraw/checkpoints/default.
 """
 
 import ml_collections

@@ -202,3 +202,30 @@ def test_a_lone_lump_in_a_clean_drawing_is_kept(kanji_set):
         if found == 2:
             break
     assert found == 2
+
+
+@pytest.mark.parametrize("style", ["px3", "px5", "aa"])
+def test_thick_and_rough_junctions_are_thinned(kanji_set, style):
+    """Centrelines redrawn to a junction's centre leave lumps there; canonical
+    output keeps no crowded pixel (3+ neighbours) whose removal cuts nothing."""
+    from jdraw.data import variants
+
+    def removable_crowded(img):
+        p = np.pad(img, 1)
+        deg = canonical._degree(img)
+        return sum(
+            canonical._SIMPLE[
+                sum(
+                    int(p[y + 1 + dy, x + 1 + dx]) << k
+                    for k, (dy, dx) in enumerate(canonical._RING)
+                )
+            ]
+            for y, x in zip(*np.nonzero(img & (deg >= 3)))
+        )
+
+    before = 0
+    for i in kanji.split_indices(kanji_set, "test")[:6]:
+        ink = variants.draw(kanji_set.strokes(int(i)), style)
+        before += removable_crowded(canonical.thick_centrelines(ink))
+        assert removable_crowded(canonical.canonicalise(ink)) == 0
+    assert before > 0  # there were some to thin

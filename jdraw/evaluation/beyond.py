@@ -25,8 +25,12 @@ ROWS = (
     ("ours", "xy", "ours, strokes sorted by start x + y"),
     ("ours", "ranker", "ours + learned stroke ranker"),
     ("fast_local", "ranker", "ours, smaller local model (configs/fast_local.py) + ranker"),
-    ("robust", "model", "ours, robust local model (configs/robust.py), as traced"),
-    ("robust", "ranker", "ours, robust local model + ranker (bundled default)"),
+    (
+        "robust",
+        "model",
+        "ours, robust: local and start models also on lines drawn other ways, as traced",
+    ),
+    ("robust", "ranker", "ours, robust + its ranker (bundled default)"),
 )
 
 # Files merged per planner, later ones overriding: whole test split, then other drawings.

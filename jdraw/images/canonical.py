@@ -11,7 +11,8 @@ canonical lines (nearly) as they are:
    its lines, as anti-aliased lines thresholded leave: :func:`is_rough`)
    become centrelines (:func:`thick_centrelines`): skeleton chains, with
    junctions that thinning split merged, smoothed and redrawn with the
-   demonstrations' curve rule;
+   demonstrations' curve rule; the lumps where redrawn chains meet at a
+   junction are thinned, so that every crowded pixel left is needed;
 2. lumps on a line (pixels with 3+ neighbours where only one line passes,
    like the triangle a polyline leaves at a joint) are thinned where there
    are two or more, while junctions of 3+ lines are kept as drawn, since
@@ -206,12 +207,13 @@ def _simple_table() -> np.ndarray:
 _SIMPLE = _simple_table()
 
 
-def _lumps(ink: np.ndarray):
-    """Clusters of crowded pixels (3+ neighbours) with at most two ways out.
+def _lumps(ink: np.ndarray, max_ways: int | None = 2):
+    """Clusters of crowded pixels (3+ neighbours) with at most ``max_ways`` ways out.
 
     Yields ``(y0, x0, mask)``: each cluster as a mask of the window at
-    ``(y0, x0)``. Such a cluster is a lump on one line (a staircase
-    triangle, a doubled pixel); one with three or more ways out is a junction.
+    ``(y0, x0)``. Such a cluster with two ways out is a lump on one line (a
+    staircase triangle, a doubled pixel); one with three or more is a
+    junction. ``max_ways=None`` yields every cluster.
     """
     crowded = ink & (_degree(ink) >= 3)
     if not crowded.any():
@@ -224,7 +226,8 @@ def _lumps(ink: np.ndarray):
         cl = lab[y0:y1, x0:x1] == c
         near = cv2.dilate(cl.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
         ring = ink[y0:y1, x0:x1] & ~cl & near
-        if cv2.connectedComponents(ring.astype(np.uint8), connectivity=8)[0] - 1 <= 2:
+        ways = cv2.connectedComponents(ring.astype(np.uint8), connectivity=8)[0] - 1
+        if max_ways is None or ways <= max_ways:
             yield y0, x0, cl
 
 
@@ -238,14 +241,14 @@ def is_rough(ink: np.ndarray, per_100: float = 1.0) -> bool:
     return n > 0 and sum(1 for _ in _lumps(ink)) >= per_100 * n / 100
 
 
-def thin_lumps(ink: np.ndarray) -> np.ndarray:
-    """Thins lumps on a line (:func:`_lumps`); junctions are kept as drawn.
+def thin_lumps(ink: np.ndarray, junctions: bool = False) -> np.ndarray:
+    """Thins lumps on a line (:func:`_lumps`), and junctions too if ``junctions``.
 
     A lump's pixels are removed one at a time, in raster order, while
     removing one cuts nothing, so the line keeps its course.
     """
     out = np.pad(ink, 1)
-    for y0, x0, cl in _lumps(ink):
+    for y0, x0, cl in _lumps(ink, None if junctions else 2):
         for py, px in zip(*np.nonzero(cl)):
             py, px = py + y0 + 1, px + x0 + 1  # in the padded image
             code = sum(int(out[py + dy, px + dx]) << k for k, (dy, dx) in enumerate(_RING))
@@ -331,7 +334,9 @@ def canonicalise(ink) -> np.ndarray:
     if not ink.any():
         return ink.copy()
     if is_thick(ink) or is_rough(ink):
-        ink = thick_centrelines(ink)
+        # Chains redrawn to a junction's centre leave a lump there that jdraw's own lines
+        # do not have; thinned, the junction is the few pixels where lines meet.
+        ink = thin_lumps(thick_centrelines(ink), junctions=True)
     lumps = [cl for _, _, cl in _lumps(ink)]
     if len(lumps) >= 2 or (lumps and np.count_nonzero(lumps[0]) < 5):
         # A lone lump of 5+ pixels is most likely jdraw's own: a corner where a stroke

@@ -19,9 +19,19 @@ PIXEL_ACC_FLOOR = 0.999  # canonical inputs may drop a stray staircase pixel
 def test_bundled_checkpoints_are_present_and_trained():
     paper = bundle.read_meta(bundle.PAPER_BUNDLE)
     assert paper["provenance"].get("strokes_seen", 0) >= 90_000
-    ours = bundle.read_meta(bundle.DEFAULT_BUNDLE)
+    # The default is a fine-tune (configs/robust*.py) of the smaller local model
+    # (fast_local) beside the previous default's start model (ours); each bundle's
+    # provenance counts its own stage only.
+    here = bundle.DEFAULT_BUNDLE.parent
+    ours = bundle.read_meta(here / "ours")
     assert ours["model"]["global_net"] == "unet"
     assert ours["provenance"].get("global_seen", 0) >= 30_000
+    fast = bundle.read_meta(here / "fast_local")
+    assert fast["provenance"].get("strokes_seen", 0) >= 90_000
+    default = bundle.read_meta(bundle.DEFAULT_BUNDLE)
+    assert default["model"] == fast["model"]
+    assert default["provenance"]["config"] == "robust_start"
+    assert default["provenance"].get("global_seen", 0) >= 9_000
     from jdraw.planner import plan as api
 
     assert api.load_ranker(None) is not None  # the default orders with its ranker

@@ -35,6 +35,13 @@ _VCHARS = flags.DEFINE_integer("variant_chars", None, "Test characters for the v
 _CANON = flags.DEFINE_bool(
     "canonicalise", True, "Canonicalise inputs first (jdraw.plan's default)."
 )
+_JOIN = flags.DEFINE_enum(
+    "join",
+    "auto",
+    ["auto", "yes", "no"],
+    "Join strokes that go on through a junction (jdraw.planner.joins); auto: as the "
+    "checkpoint says.",
+)
 _RANKER = flags.DEFINE_string(
     "ranker", None, "Folder with a stroke ranker to use instead of the checkpoint's own."
 )
@@ -55,6 +62,7 @@ def main(argv):
         variant_chars=_VCHARS.value,
         ranker_from=_RANKER.value,
         canonicalise=_CANON.value,
+        join={"auto": None, "yes": True, "no": False}[_JOIN.value],
     )
     for k, r in res.items():
         if not isinstance(r, dict):

@@ -12,8 +12,9 @@ of them. 600 traced characters.
 Wall time: about 4 min on the 2-core CPU (600 traced characters 117 s, the
 fit 9 s): 261,399 ordered pairs, 39,149 heading examples. Its ranker.npz and
 ranker.json, copied beside runs/robust_start/bundle's params, make
-jdraw/checkpoints/default. Whole test split: order over all pairs 0.9035 as
-traced -> 0.9485 ranked, direction 0.9907 -> 0.9974 (results/beyond_robust.json).
+jdraw/checkpoints/robust (the default until configs/lean.py). Whole test
+split: order over all pairs 0.9035 as traced -> 0.9485 ranked, direction
+0.9907 -> 0.9974 (results/beyond_robust.json).
 """
 
 import ml_collections

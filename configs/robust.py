@@ -21,8 +21,8 @@ for 2,400 steps; benches on 60 training characters at steps 900 and 1,300
 showed no further gain on thick lines, so it was stopped with SIGTERM at 1,757
 and num_steps set to that, which wrote its bundle. Validation (48 characters,
 as traced): stroke accuracy 0.965. Next stages: configs/robust_start.py, then
-configs/ranker_robust.py; their result is the bundled default
-(jdraw/checkpoints/default), measured in the README ("Beyond the paper").
+configs/ranker_robust.py; their result, jdraw/checkpoints/robust (the default
+until configs/lean.py), is measured in the README ("Beyond the paper").
 """
 
 import ml_collections

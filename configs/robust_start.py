@@ -14,7 +14,7 @@ Wall time: 300 steps (9,600 stroke starts) in 2 min 15 s of training-loop
 time on the 2-core CPU. Validation (48 characters, as traced): order over all
 pairs 0.826 -> 0.886, stroke accuracy 0.966, direction 0.988. The bundle
 (runs/robust_start/bundle) with the ranker of configs/ranker_robust.py is
-jdraw/checkpoints/default.
+jdraw/checkpoints/robust (the default until configs/lean.py).
 """
 
 import ml_collections

@@ -59,3 +59,18 @@ def test_mismatched_model(small_bundle):
     (path / "bundle.json").write_text(json.dumps(meta))
     with pytest.raises(bundle.BundleError, match=r"params\.npz.*shape"):
         bundle.load(path)
+
+
+def test_provenance_records_the_bundle_a_run_started_from(tmp_path):
+    from ml_collections import ConfigDict
+
+    from jdraw.model import checkpoints
+
+    mdl, cfg = bundle.load(bundle.PAPER_BUNDLE)
+    bundle.write(mdl, cfg, tmp_path / "a", provenance={"config": "a", "strokes_seen": 5})
+    run = ConfigDict(dict(name="b", train=dict(init_from=str(tmp_path / "a"))))
+    prov = checkpoints.provenance("runs/b", run, {"step": 3})
+    assert prov["config"] == "b" and prov["step"] == 3
+    assert prov["init_from"]["config"] == "a" and prov["init_from"]["strokes_seen"] == 5
+    plain = ConfigDict(dict(name="c", train=dict(init_from="")))
+    assert "init_from" not in checkpoints.provenance("runs/c", plain, {})

@@ -204,28 +204,50 @@ def test_a_lone_lump_in_a_clean_drawing_is_kept(kanji_set):
     assert found == 2
 
 
-@pytest.mark.parametrize("style", ["px3", "px5", "aa"])
-def test_thick_and_rough_junctions_are_thinned(kanji_set, style):
-    """Centrelines redrawn to a junction's centre leave lumps there; canonical
-    output keeps no crowded pixel (3+ neighbours) whose removal cuts nothing."""
+def _ray(angle_deg, n=10):
+    """``[n + 1, 2]`` points from the origin outwards at ``angle_deg``."""
+    a = np.radians(angle_deg)
+    return np.arange(n + 1)[:, None] * np.array([np.cos(a), np.sin(a)])
+
+
+def test_join_straight_draws_lines_through_junctions_as_one():
+    from jdraw.images import skeleton
+
+    # A crossing: four rays from one node; 0/180 and 60/240 degrees go straight through.
+    polys = {k: _ray(a) for k, a in enumerate((0, 60, 180, 240))}
+    out = skeleton.join_straight(polys, {"n": [(k, True) for k in polys]}, reach=5)
+    assert len(out) == 2
+    for line in out:  # each a straight line through the node, end to end
+        d = line[-1] - line[0]
+        assert np.linalg.norm(d) == pytest.approx(20)
+        u = line - line[0]
+        assert np.allclose(u[:, 0] * d[1] - u[:, 1] * d[0], 0, atol=1e-9)  # on the line
+    # A T: the bar is one line, the stem stays alone; an L corner is not joined.
+    tee = {k: _ray(a) for k, a in enumerate((0, 180, 90))}
+    out = skeleton.join_straight(tee, {"n": [(k, True) for k in tee]}, reach=5)
+    assert sorted(len(p) for p in out) == [11, 21]
+    ell = {k: _ray(a) for k, a in enumerate((0, 90))}
+    assert len(skeleton.join_straight(ell, {"n": [(0, True), (1, True)]}, reach=5)) == 2
+    # Ends given as last points, and a chain of joins through two nodes.
+    chain = {0: _ray(180)[::-1], 1: np.array([[0.0, 0], [10, 0]]), 2: _ray(0) + [10, 0]}
+    ends = {"a": [(0, False), (1, True)], "b": [(1, False), (2, True)]}
+    (line,) = skeleton.join_straight(chain, ends, reach=5)
+    assert abs(line[-1][0] - line[0][0]) == pytest.approx(30)
+
+
+@pytest.mark.parametrize("style", ["px3", "px5"])
+def test_thick_crossing_lines_stay_straight_through_the_crossing(style):
+    """Two thick lines crossing at 45 degrees: each canonical line goes straight on
+    through the crossing, as jdraw draws two crossing strokes (the thinned lump
+    of an earlier version bent one line into the other there)."""
     from jdraw.data import variants
 
-    def removable_crowded(img):
-        p = np.pad(img, 1)
-        deg = canonical._degree(img)
-        return sum(
-            canonical._SIMPLE[
-                sum(
-                    int(p[y + 1 + dy, x + 1 + dx]) << k
-                    for k, (dy, dx) in enumerate(canonical._RING)
-                )
-            ]
-            for y, x in zip(*np.nonzero(img & (deg >= 3)))
-        )
-
-    before = 0
-    for i in kanji.split_indices(kanji_set, "test")[:6]:
-        ink = variants.draw(kanji_set.strokes(int(i)), style)
-        before += removable_crowded(canonical.thick_centrelines(ink))
-        assert removable_crowded(canonical.canonicalise(ink)) == 0
-    assert before > 0  # there were some to thin
+    a = [np.array([[[20.0, 50], [40, 50], [60, 50], [80, 50]]])]  # one cubic: horizontal
+    b = [np.array([[[30.0, 80], [45, 65], [65, 45], [80, 30]]])]  # rising at 45 degrees
+    out = canonical.canonicalise(variants.draw(a + b, style))
+    ys, xs = np.nonzero(out)
+    near_a = (np.abs(ys - 50) <= 1) & (xs >= 25) & (xs <= 75)
+    # The horizontal line: one pixel per column across the crossing, within 1 px of y = 50.
+    cols = xs[near_a & (np.abs(xs - 60) <= 6)]  # they cross at x = 60
+    assert sorted(set(cols)) == list(range(54, 67))
+    assert len(cols) <= 13 + 2  # the other line's own pixels where it passes

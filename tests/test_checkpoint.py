@@ -19,19 +19,25 @@ PIXEL_ACC_FLOOR = 0.999  # canonical inputs may drop a stray staircase pixel
 def test_bundled_checkpoints_are_present_and_trained():
     paper = bundle.read_meta(bundle.PAPER_BUNDLE)
     assert paper["provenance"].get("strokes_seen", 0) >= 90_000
-    # The default is a fine-tune (configs/robust*.py) of the smaller local model
-    # (fast_local) beside the previous default's start model (ours); each bundle's
-    # provenance counts its own stage only.
+    # Each bundle's provenance counts its own stage, and the stage it started from
+    # under "init_from". The default (configs/lean*.py): a lean local model trained
+    # on the paper's budget, then a half-resolution start model beside it.
     here = bundle.DEFAULT_BUNDLE.parent
     ours = bundle.read_meta(here / "ours")
     assert ours["model"]["global_net"] == "unet"
     assert ours["provenance"].get("global_seen", 0) >= 30_000
     fast = bundle.read_meta(here / "fast_local")
     assert fast["provenance"].get("strokes_seen", 0) >= 90_000
+    robust = bundle.read_meta(here / "robust")  # the previous default: fast_local fine-tuned
+    assert robust["model"] == fast["model"]
+    assert robust["provenance"]["config"] == "robust_start"
     default = bundle.read_meta(bundle.DEFAULT_BUNDLE)
-    assert default["model"] == fast["model"]
-    assert default["provenance"]["config"] == "robust_start"
-    assert default["provenance"].get("global_seen", 0) >= 9_000
+    assert default["model"]["start_half_res"] is True
+    assert default["provenance"]["config"] == "lean_start"
+    assert default["provenance"].get("global_seen", 0) >= 45_000
+    assert default["provenance"]["init_from"]["config"] == "lean"
+    assert default["provenance"]["init_from"].get("strokes_seen", 0) >= 90_000
+    assert default["planner"] == {"join": True}
     from jdraw.planner import plan as api
 
     assert api.load_ranker(None) is not None  # the default orders with its ranker

@@ -2,15 +2,17 @@
 
 import jax.numpy as jnp
 import numpy as np
+import pytest
 from ml_collections import ConfigDict
 
 from jdraw.model import network as M
+from jdraw.model import start_net
 
 FAR_EFFECT = 1e-6  # logit change that counts as "depends on"
 
 
-def _logit_change(global_net):
-    m = M.build(ConfigDict(dict(hidden=8, global_net=global_net)), seed=3)
+def _logit_change(global_net, **model):
+    m = M.build(ConfigDict(dict(hidden=8, global_net=global_net, **model)), seed=3)
     m.eval()
     x = np.zeros((1, 100, 100, 4), np.float32)
     x[0, 10, 10:30, 3] = 1  # unvisited ink near the probed pixel
@@ -21,8 +23,37 @@ def _logit_change(global_net):
     return float(abs(a - b))
 
 
-def test_start_net_logit_depends_on_ink_60_px_away():
-    assert _logit_change("unet") > FAR_EFFECT
+@pytest.mark.parametrize("half_res", [False, True])
+def test_start_net_logit_depends_on_ink_60_px_away(half_res):
+    model = dict(start_widths=(16, 32, 64), start_half_res=True) if half_res else {}
+    assert _logit_change("unet", **model) > FAR_EFFECT
+
+
+def test_space_to_depth_round_trip_keeps_each_pixel():
+    x = jnp.arange(2 * 6 * 4 * 3, dtype=jnp.float32).reshape(2, 6, 4, 3)
+    d = start_net.space_to_depth(x)
+    assert d.shape == (2, 3, 2, 12)
+    np.testing.assert_array_equal(d[0, 1, 1, :3], x[0, 2, 2])  # a block's top-left pixel
+    np.testing.assert_array_equal(d[0, 1, 1, 9:], x[0, 3, 3])  # and its bottom-right
+    np.testing.assert_array_equal(start_net.depth_to_space(d), x)
+
+
+def test_half_res_start_net_gives_each_pixel_its_own_logit():
+    m = M.build(
+        ConfigDict(
+            dict(hidden=8, global_net="unet", start_widths=(16, 32, 64), start_half_res=True)
+        ),
+        seed=1,
+    )
+    m.eval()
+    x = np.zeros((1, 100, 100, 4), np.float32)
+    x[0, 20:60, 40, 3] = 1
+    logits = np.asarray(m.global_logits(jnp.asarray(x), restrict=False))[0]
+    assert logits.shape == (100, 100)
+    block = logits[20:22, 40:42]  # one 2x2 block: four different logits
+    assert len(np.unique(block)) == 4
+    with pytest.raises(ValueError, match="even"):
+        m.start_net(jnp.zeros((1, 99, 99, 4)))
 
 
 def test_paper_global_logit_does_not():

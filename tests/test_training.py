@@ -218,3 +218,24 @@ def test_export_keeps_the_training_config(straight_run, tmp_path):
     assert json.loads((out / "training_config.json").read_text()) == want
     again = jdraw.export(out, tmp_path / "c")  # copying a bundle keeps it too
     assert json.loads((again / "training_config.json").read_text()) == want
+
+
+def test_cosine_decay_lowers_the_step_size_to_its_final_fraction():
+    import jax
+    import jax.numpy as jnp
+
+    from jdraw.train.step import create_state
+
+    cfg = tiny.get_config()
+    cfg.train.update(learning_rate=1e-2, final_lr_fraction=0.1, num_steps=10)
+    _, tx, _ = create_state(cfg)
+    p = {"w": jnp.zeros(3)}
+    g = {"w": jnp.ones(3)}  # a constant gradient: Adam's step is the learning rate
+    opt = tx.init(p)
+    sizes = []
+    for _ in range(11):
+        u, opt = tx.update(g, opt, p)
+        sizes.append(float(jnp.abs(jax.tree.leaves(u)[0]).max()))
+    np.testing.assert_allclose(sizes[0], 1e-2, rtol=1e-3)
+    np.testing.assert_allclose(sizes[10], 1e-3, rtol=1e-3)  # decayed to a tenth
+    assert sizes[5] < sizes[0]

@@ -137,6 +137,11 @@ def on_lines(ctrl: list[np.ndarray], ink: np.ndarray, reach: float = 2.5, spare:
     return D.Demo(strokes=strokes, target=target)
 
 
+def weights(styles) -> dict[str, float] | None:
+    """A config's ``styles`` (any mapping, or nothing) as ``{style: probability}`` or ``None``."""
+    return {str(k): float(v) for k, v in styles.items()} if styles else None
+
+
 def sample(ks: kanji.KanjiSet, i: int, rng: np.random.Generator, strength: float, styles) -> D.Demo:
     """Demonstration of character ``i``, augmented, in a style drawn from ``styles``.
 

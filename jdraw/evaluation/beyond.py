@@ -4,7 +4,8 @@
 
 Reads the ``eval.py`` results ``beyond_{name}[_clean|_variants].json`` of the
 paper's model (``paper``, scored with our ranker too) and of ours (``ours``,
-``fast_local``, ``robust``) and writes a Markdown table:
+``fast_local``, ``robust``, ``robust_canon``, ``robust_join``, ``lean``) and
+writes a Markdown table:
 for each planner and stroke order, order agreement over matched pairs and
 over all pairs, exact order, direction, stroke and pixel accuracy and drawn /
 true strokes on the whole KanjiVG test split, and stroke accuracy and
@@ -30,7 +31,19 @@ ROWS = (
         "model",
         "ours, robust: local and start models also on lines drawn other ways, as traced",
     ),
-    ("robust", "ranker", "ours, robust + its ranker (bundled default)"),
+    ("robust", "ranker", "ours, robust + its ranker (previous default)"),
+    (
+        "robust_canon",
+        "ranker",
+        "ours, robust + its ranker; thick lines redrawn straight through junctions",
+    ),
+    ("robust_join", "ranker", "ours, robust + its ranker; and strokes joined through junctions"),
+    (
+        "lean",
+        "model",
+        "ours, lean: 8/16-channel local model, half-resolution start model, joins; as traced",
+    ),
+    ("lean", "ranker", "ours, lean + its ranker (bundled default)"),
 )
 
 # Files merged per planner, later ones overriding: whole test split, then other drawings.

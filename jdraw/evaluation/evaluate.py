@@ -53,6 +53,7 @@ def plan_chars(
     max_steps=None,
     style: str | None = None,
     canonicalise: bool = True,
+    join: bool | None = None,
 ):
     """Plans characters ``idx`` (no augmentation) as traced (``order="model"``).
 
@@ -83,6 +84,7 @@ def plan_chars(
             max_steps=max_steps,
             order="model",
             canonicalise=canonicalise,
+            join=join,
         )
         parts.append(Plan(p.strokes[:n], p.actions[:n], p.lengths[:n], p.truncated[:n]))
     T = max(p.actions.shape[1] for p in parts)
@@ -112,6 +114,7 @@ def evaluate(
     figure_chars: int = 6,
     ranker_from=None,
     canonicalise: bool = True,
+    join: bool | None = None,
 ) -> dict:
     """Scores a checkpoint; writes ``{out_dir}/{name}.json`` and ``{name}_fig3.png``.
 
@@ -127,6 +130,7 @@ def evaluate(
         checkpoint's own (to score another planner's strokes with it).
       canonicalise: passed to ``jdraw.plan`` (False reproduces Table I as
         measured before canonical inputs existed).
+      join: passed to ``jdraw.plan`` (``None``: as the checkpoint says).
 
     Each split's entry holds the metrics of the order ``jdraw.plan`` uses by
     default for this checkpoint (the ranker's if it has one) and, under
@@ -141,6 +145,7 @@ def evaluate(
     res: dict = {
         "checkpoint": str(checkpoint) if checkpoint is not None else "bundled default",
         "default_order": default,
+        "join": join,
     }
     t0 = time.time()
     test = kanji.split_indices(ks, "test")
@@ -166,6 +171,7 @@ def evaluate(
             progress=progress,
             style=style,
             canonicalise=canonicalise,
+            join=join,
         )
         plan_s = time.time() - t
         by = {}

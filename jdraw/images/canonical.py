@@ -11,8 +11,8 @@ canonical lines (nearly) as they are:
    its lines, as anti-aliased lines thresholded leave: :func:`is_rough`)
    become centrelines (:func:`thick_centrelines`): skeleton chains, with
    junctions that thinning split merged, smoothed and redrawn with the
-   demonstrations' curve rule; the lumps where redrawn chains meet at a
-   junction are thinned, so that every crowded pixel left is needed;
+   demonstrations' curve rule, a line that goes on straight through a
+   junction as one curve, so lines cross and meet as jdraw's strokes do;
 2. lumps on a line (pixels with 3+ neighbours where only one line passes,
    like the triangle a polyline leaves at a joint) are thinned where there
    are two or more, while junctions of 3+ lines are kept as drawn, since
@@ -241,14 +241,14 @@ def is_rough(ink: np.ndarray, per_100: float = 1.0) -> bool:
     return n > 0 and sum(1 for _ in _lumps(ink)) >= per_100 * n / 100
 
 
-def thin_lumps(ink: np.ndarray, junctions: bool = False) -> np.ndarray:
-    """Thins lumps on a line (:func:`_lumps`), and junctions too if ``junctions``.
+def thin_lumps(ink: np.ndarray) -> np.ndarray:
+    """Thins lumps on a line (:func:`_lumps`); junctions are left as they are.
 
     A lump's pixels are removed one at a time, in raster order, while
     removing one cuts nothing, so the line keeps its course.
     """
     out = np.pad(ink, 1)
-    for y0, x0, cl in _lumps(ink, None if junctions else 2):
+    for y0, x0, cl in _lumps(ink):
         for py, px in zip(*np.nonzero(cl)):
             py, px = py + y0 + 1, px + x0 + 1  # in the padded image
             code = sum(int(out[py + dy, px + dx]) << k for k, (dy, dx) in enumerate(_RING))
@@ -257,7 +257,12 @@ def thin_lumps(ink: np.ndarray, junctions: bool = False) -> np.ndarray:
     return out[1:-1, 1:-1]
 
 
-def thick_centrelines(ink: np.ndarray, merge: float = 1.0, sigma: float = 1.5) -> np.ndarray:
+def thick_centrelines(
+    ink: np.ndarray,
+    merge: float = 1.0,
+    sigma: float = 1.5,
+    straight: float = 35.0,
+) -> np.ndarray:
     """``bool [H, W]`` centrelines of thick ink, drawn as jdraw draws curves.
 
     The skeleton is cut into chains between ends and junctions. Two junctions
@@ -266,11 +271,15 @@ def thick_centrelines(ink: np.ndarray, merge: float = 1.0, sigma: float = 1.5) -
     dropped and the others meet at the junctions' mean. Each chain is then
     smoothed (``sigma`` pixels along it, ends pinned) and redrawn with the
     curve rule of the demonstrations (:func:`_draw_curve`), which takes the
-    pen's wobble and the thinning's kinks out of the line.
+    pen's wobble and the thinning's kinks out of the line; chains that go on
+    straight through a junction (within ``straight`` degrees) are redrawn as
+    one curve (:func:`jdraw.images.skeleton.join_straight`).
 
     Args:
       ink: ``bool [H, W]`` lines more than one pixel wide.
       merge: longest chain between two junctions merged away, pen widths.
+      straight: most a line may turn at a junction and be drawn as one curve,
+        degrees (0: every chain drawn alone).
       sigma: smoothing along chains, pixels.
     """
     from skimage.morphology import skeletonize
@@ -305,6 +314,7 @@ def thick_centrelines(ink: np.ndarray, merge: float = 1.0, sigma: float = 1.5) -
     radius = max(1.0, width / 2)
     out = np.zeros_like(ink)
     h, w = ink.shape
+    polys, ends_at = {}, {}
     for k, ch in enumerate(chains):
         if k in dropped:
             continue
@@ -321,8 +331,12 @@ def thick_centrelines(ink: np.ndarray, merge: float = 1.0, sigma: float = 1.5) -
                 j += 1
             q = np.concatenate([c[None], q[j:]])
             p = q if first else q[::-1]
-        if len(p) >= 4:
-            p = _smooth(p, sigma)
+            if straight:
+                ends_at.setdefault(find(end), []).append((k, first))
+        polys[k] = _smooth(p, sigma) if len(p) >= 4 else p
+    # A line through a junction is drawn as one curve, as jdraw draws a stroke.
+    lines = skeleton.join_straight(polys, ends_at, int(round(width)) + 3, straight)
+    for p in lines:
         q = _draw_curve(p) if len(p) > 1 else np.floor(p + 0.5).astype(np.int64)
         out[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)] = True
     return out
@@ -334,9 +348,7 @@ def canonicalise(ink) -> np.ndarray:
     if not ink.any():
         return ink.copy()
     if is_thick(ink) or is_rough(ink):
-        # Chains redrawn to a junction's centre leave a lump there that jdraw's own lines
-        # do not have; thinned, the junction is the few pixels where lines meet.
-        ink = thin_lumps(thick_centrelines(ink), junctions=True)
+        ink = thick_centrelines(ink)
     lumps = [cl for _, _, cl in _lumps(ink)]
     if len(lumps) >= 2 or (lumps and np.count_nonzero(lumps[0]) < 5):
         # A lone lump of 5+ pixels is most likely jdraw's own: a corner where a stroke

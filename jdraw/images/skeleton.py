@@ -165,3 +165,63 @@ def simplify(points: np.ndarray, tol: float) -> np.ndarray:
     if len(pts) < 3 or tol <= 0:
         return pts
     return measure.approximate_polygon(pts, tol)
+
+
+def join_straight(polys: dict, ends_at: dict, reach: int, straight: float = 35) -> list:
+    """Polylines that meet at nodes, joined where a line goes straight through a node.
+
+    At each node the two ends whose lines leave in the most nearly opposite
+    directions (within ``straight`` degrees of a straight line) are joined,
+    then the next two, so two lines crossing at a node become two polylines
+    crossing there, and the bar of a T one polyline with the stem ending on it.
+
+    Args:
+      polys: ``{key: float [n, 2]}`` polylines; one that ends at a node starts
+        or ends exactly at the node's point.
+      ends_at: ``{node: [(key, first), ...]}``, the polyline ends at each node
+        (``first``: its first point, else its last).
+      reach: points along a polyline that give its direction from the node.
+
+    Returns:
+      A list of ``float [m, 2]`` polylines covering every input polyline once.
+    """
+    cos = np.cos(np.radians(straight))
+
+    def away(key, first):
+        p = polys[key] if first else polys[key][::-1]
+        v = p[min(reach, len(p) - 1)] - p[0]
+        n = np.linalg.norm(v)
+        return v / n if n > 0 else v
+
+    link: dict[tuple, tuple] = {}
+    for es in ends_at.values():
+        pairs = sorted(
+            (float(away(*e) @ away(*f)), i, j)
+            for i, e in enumerate(es)
+            for j, f in enumerate(es)
+            if i < j and e[0] != f[0]
+        )
+        for d, i, j in pairs:
+            if d > -cos:
+                break
+            if es[i] not in link and es[j] not in link:
+                link[es[i]] = es[j]
+                link[es[j]] = es[i]
+    out, seen = [], set()
+    # Walks start at unjoined ends first, so that a cycle of joins is walked last.
+    keys = sorted(polys, key=lambda k: ((k, True) in link and (k, False) in link, str(k)))
+    for key in keys:
+        if key in seen:
+            continue
+        first = (key, True) not in link  # walk away from an unjoined end
+        parts, cur, f = [], key, first
+        while cur not in seen:
+            seen.add(cur)
+            p = polys[cur] if f else polys[cur][::-1]
+            parts.append(p if not parts else p[1:])  # the node's point once
+            nxt = link.get((cur, not f))  # the end we arrive at
+            if nxt is None:
+                break
+            cur, f = nxt
+        out.append(np.concatenate(parts))
+    return out

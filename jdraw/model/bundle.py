@@ -38,11 +38,14 @@ def write(
     out_dir,
     provenance: dict | None = None,
     training_config: dict | None = None,
+    planner: dict | None = None,
 ) -> pathlib.Path:
     """Writes ``model`` as a bundle in ``out_dir``.
 
     ``training_config`` (the run's whole config) goes to ``training_config.json``
-    beside it, for the record; loading does not need it.
+    beside it, for the record; loading does not need it. ``planner`` (settings
+    of how ``jdraw.plan`` uses the model, e.g. ``{"join": True}``, see
+    :func:`jdraw.planner.plan.planner_settings`) goes into ``bundle.json``.
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -55,6 +58,8 @@ def write(
         "model": dict(model_config),
         "provenance": provenance or {},
     }
+    if planner:
+        meta["planner"] = dict(planner)
     (out / "bundle.json").write_text(json.dumps(meta, indent=2) + "\n")
     return out
 

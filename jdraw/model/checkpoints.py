@@ -106,14 +106,25 @@ def restore(workdir) -> Restored:
 
 
 def provenance(workdir, cfg: ConfigDict, progress: dict) -> dict:
-    """A bundle's provenance: the workdir, the config's name and the progress counters."""
-    return {"workdir": str(workdir), "config": cfg.get("name", ""), **progress}
+    """A bundle's provenance: the workdir, the config's name and the progress counters.
+
+    A run that started from another bundle (``cfg.train.init_from``) records
+    that bundle's provenance under ``init_from``, so a bundle made in stages
+    says what each stage trained.
+    """
+    prov = {"workdir": str(workdir), "config": cfg.get("name", ""), **progress}
+    src = cfg.get("train", {}).get("init_from") if "train" in cfg else None
+    if src and (pathlib.Path(src) / "bundle.json").exists():
+        prov["init_from"] = {"bundle": str(src), **bundle.read_meta(src).get("provenance", {})}
+    return prov
 
 
 def write_bundle(model, cfg: ConfigDict, out_dir, prov: dict) -> pathlib.Path:
     """Writes a run's bundle: ``model``, its config section and the whole config beside it."""
     tc = json.loads(cfg.to_json_best_effort())
-    return bundle.write(model, cfg.model.to_dict(), out_dir, prov, tc)
+    planner = cfg.get("planner")
+    planner = planner.to_dict() if planner is not None else None
+    return bundle.write(model, cfg.model.to_dict(), out_dir, prov, tc, planner)
 
 
 def export(checkpoint_or_workdir, out_dir) -> pathlib.Path:
@@ -132,7 +143,9 @@ def export(checkpoint_or_workdir, out_dir) -> pathlib.Path:
         meta = bundle.read_meta(src)
         tc = src / bundle.TRAINING_CONFIG
         tc = json.loads(tc.read_text()) if tc.exists() else None
-        return bundle.write(mdl, model_cfg, out_dir, meta.get("provenance"), tc)
+        return bundle.write(
+            mdl, model_cfg, out_dir, meta.get("provenance"), tc, meta.get("planner")
+        )
     r = restore(src)
     prov = provenance(src, r.config, {"step": r.step, **r.progress})
     return write_bundle(r.model, r.config, out_dir, prov)

@@ -199,6 +199,7 @@ class DrawModel(nnx.Module):
         global_net: str = "paper",
         start_widths: Sequence[int] = (8, 16, 32, 64),
         start_full_res_convs: int = 0,
+        start_half_res: bool = False,
         rngs: nnx.Rngs,
     ):
         if core not in ("lstm", "fc"):
@@ -224,7 +225,11 @@ class DrawModel(nnx.Module):
         self.global_net = global_net
         if global_net == "unet":  # ours: whole-canvas view, ~1/8 of the cost
             self.start_net = StartNet(
-                GLOBAL_CHANNELS, start_widths, full_res_convs=start_full_res_convs, rngs=rngs
+                GLOBAL_CHANNELS,
+                start_widths,
+                full_res_convs=start_full_res_convs,
+                half_res=start_half_res,
+                rngs=rngs,
             )
         else:
             self.global_first = ConvParams(GLOBAL_CHANNELS, self.trunk.blocks[0][0], 3, rngs)
@@ -294,5 +299,6 @@ def build(cfg, seed: int = 0) -> DrawModel:
         global_net=str(cfg.get("global_net", "paper")),
         start_widths=tuple(cfg.get("start_widths", (8, 16, 32, 64))),
         start_full_res_convs=int(cfg.get("start_full_res_convs", 0)),
+        start_half_res=bool(cfg.get("start_half_res", False)),
         rngs=nnx.Rngs(seed),
     )

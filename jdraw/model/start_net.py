@@ -9,6 +9,13 @@ state, while the logits stay per pixel (starts stay exact).
 
 Channels are few at full resolution, which is where the cost is: about 1/8 of
 the paper's global encoder in multiply-adds (``bench/global_cost.py``).
+
+On a CPU the full-resolution layers cost most of the time even when they are
+a small part of the multiply-adds (a few channels over 10,000 pixels), so
+``half_res=True`` starts at 50x50: 2x2 blocks of pixels become the channels
+of one (space to depth), the network runs at 50, 25 and 13, and its last
+layer gives four logits per block, one per pixel (depth to space), plus a
+linear term of the pixel's own state channels. Logits stay per pixel.
 """
 
 from __future__ import annotations
@@ -41,6 +48,20 @@ def coordinates(h: int, w: int) -> jax.Array:
     return jnp.stack([xs, ys], -1)
 
 
+def space_to_depth(x: jax.Array) -> jax.Array:
+    """``[N, 2h, 2w, C] -> [N, h, w, 4C]``: each 2x2 block of pixels becomes one."""
+    n, h, w, c = x.shape
+    x = x.reshape(n, h // 2, 2, w // 2, 2, c).transpose(0, 1, 3, 2, 4, 5)
+    return x.reshape(n, h // 2, w // 2, 4 * c)
+
+
+def depth_to_space(x: jax.Array) -> jax.Array:
+    """``[N, h, w, 4C] -> [N, 2h, 2w, C]``, the inverse of :func:`space_to_depth`."""
+    n, h, w, c = x.shape
+    x = x.reshape(n, h, w, 2, 2, c // 4).transpose(0, 1, 3, 2, 4, 5)
+    return x.reshape(n, 2 * h, 2 * w, c // 4)
+
+
 def _up(x, shape):
     """Doubles ``[N, h, w, C]`` by repeating pixels, cropped to ``shape`` (h', w')."""
     x = jnp.repeat(jnp.repeat(x, 2, axis=1), 2, axis=2)
@@ -52,7 +73,10 @@ class StartNet(nnx.Module):
 
     Args:
       in_channels: state channels (4 for :func:`jdraw.state.global_state`).
-      widths: channels at each level; each level halves the side (100, 50, 25, 13).
+      widths: channels at each level; each level halves the side (100, 50, 25, 13;
+        from 50 with ``half_res``).
+      full_res_convs: extra 3x3 layers after the stem (at the first level).
+      half_res: start at half the side (see the module's docstring).
     """
 
     def __init__(
@@ -61,12 +85,15 @@ class StartNet(nnx.Module):
         widths: Sequence[int] = WIDTHS,
         *,
         full_res_convs: int = 0,
+        half_res: bool = False,
         rngs: nnx.Rngs,
     ):
         widths = tuple(int(c) for c in widths)
         self.widths = widths
+        self.half_res = bool(half_res)
         c0 = widths[0]
-        self.stem = _Conv(in_channels + 2, c0, 3, rngs)
+        cin = in_channels + 2  # and x, y
+        self.stem = _Conv(4 * cin if half_res else cin, c0, 3, rngs)
         # More 3x3 layers at full resolution: sharper ends of strokes (exact starts).
         self.fine = nnx.List([_Conv(c0, c0, 3, rngs) for _ in range(full_res_convs)])
         self.down = nnx.List(
@@ -82,12 +109,17 @@ class StartNet(nnx.Module):
                 for i, (a, b) in enumerate(zip(widths[:-1], widths[1:]))
             ]
         )
-        self.head = _Conv(c0, 1, 1, rngs)
+        # With half_res: four logits per 2x2 block, and the pixel's own channels.
+        self.head = _Conv(c0, 4 if half_res else 1, 1, rngs)
+        self.pixel = _Conv(cin, 1, 1, rngs) if half_res else None
 
     def __call__(self, x: jax.Array) -> jax.Array:
         n, h, w, _ = x.shape
+        if self.half_res and (h % 2 or w % 2):
+            raise ValueError(f"half_res needs an even canvas side, got {h}x{w}")
         xy = jnp.broadcast_to(coordinates(h, w), (n, h, w, 2))
-        f = jax.nn.relu(_conv(jnp.concatenate([x, xy], -1), self.stem))
+        x = jnp.concatenate([x, xy], -1)
+        f = jax.nn.relu(_conv(space_to_depth(x) if self.half_res else x, self.stem))
         for fine in self.fine:
             f = jax.nn.relu(_conv(f, fine))
         skips = []
@@ -102,6 +134,8 @@ class StartNet(nnx.Module):
         for i in reversed(range(len(self.up))):
             s = skips[i]
             f = jax.nn.relu(_conv(jnp.concatenate([_up(f, s.shape[1:3]), s], -1), self.up[i]))
+        if self.half_res:
+            return depth_to_space(_conv(f, self.head))[..., 0] + _conv(x, self.pixel)[..., 0]
         return _conv(f, self.head)[..., 0]
 
 

@@ -85,6 +85,25 @@ def load_model(checkpoint=None):
     return _load(str(path.resolve()), meta.stat().st_mtime if meta.exists() else 0.0)
 
 
+def planner_settings(checkpoint=None) -> dict:
+    """How ``plan`` uses a checkpoint: its bundle's ``planner`` section, or its run's config's.
+
+    Keys: ``join`` (:mod:`jdraw.planner.joins`; default False). A model passed
+    as a module has none.
+    """
+    if isinstance(checkpoint, nnx.Module):
+        return {}
+    path = _folder(checkpoint)
+    if path is None:
+        return {}
+    if (path / "bundle.json").exists():
+        return dict(bundle.read_meta(path).get("planner") or {})
+    if (path / "config.json").exists():
+        section = checkpoints.read_config(path).get("planner")
+        return section.to_dict() if section is not None else {}
+    return {}
+
+
 @functools.lru_cache(maxsize=16)
 def _planner(graphdef, limits: planner.Limits, local_encoding: str, kind: str = "two_scale"):
     policy = planner.model_policy(local_encoding)
@@ -194,6 +213,7 @@ def plan(
     global_batch: int = 4,
     loop: str = "slots",
     devices=None,
+    join: bool | None = None,
 ) -> Plan:
     """Plans how to draw each image.
 
@@ -223,6 +243,9 @@ def plan(
         old loop, every image waiting for the batch's longest stroke); same
         actions.
       devices: the JAX devices the slot batch is spread over (default all).
+      join: join a stroke to the one that goes on from its end through a
+        junction (:mod:`jdraw.planner.joins`); ``None``: as the checkpoint says
+        (:func:`planner_settings`; the paper's model does not).
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
@@ -256,6 +279,12 @@ def plan(
     # after canonicalising): judged from the rendered actions, not the planner's
     # `visited` (a jump marks its pixel visited before the dot is drawn).
     result = Plan.from_actions(out.actions, out.length, targets=targets)
+    if join is None:
+        join = bool(planner_settings(checkpoint).get("join", False))
+    if join:
+        from jdraw.planner import joins
+
+        result = joins.join_plan(result, targets, max_rows=limits.max_steps)
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"

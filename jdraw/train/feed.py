@@ -15,7 +15,7 @@ import numpy as np
 from jax.sharding import Mesh, NamedSharding
 from jax.sharding import PartitionSpec as P
 
-from jdraw.data import batches
+from jdraw.data import batches, variants
 from jdraw.train import global_only
 
 
@@ -29,8 +29,7 @@ def make_batch(ks, pool, cfg, step: int) -> tuple[dict, int]:
     """
     rng = np.random.default_rng([int(cfg.seed), int(step)])
     t = cfg.train
-    styles = cfg.data.get("styles", None)
-    styles = {str(k): float(v) for k, v in styles.items()} if styles else None
+    styles = variants.weights(cfg.data.get("styles", None))
     if cfg.model.get("kind", "two_scale") == "global_only":
         g = global_only.batch(ks, pool, rng, size=t.global_batch, strength=cfg.data.augment)
         return {"global_only": g}, t.global_batch

@@ -140,8 +140,7 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
         if path.exists():
             continue
         rng = np.random.default_rng([int(cfg.seed), k, int(kind == "demo")])
-        styles = cfg.get("styles", None) if kind == "traced" else None
-        styles = {str(a): float(b) for a, b in styles.items()} if styles else None
+        styles = variants.weights(cfg.get("styles", None) if kind == "traced" else None)
         demos = [
             demo.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment))
             if styles is None

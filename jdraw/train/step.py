@@ -50,14 +50,22 @@ def create_state(cfg, *, tx: optax.GradientTransformation | None = None) -> Setu
     """The model of ``cfg.model`` (seed ``cfg.seed``, in train mode) and its optimizer.
 
     ``cfg.train.init_from`` (optional) names a bundle whose matching arrays
-    are copied in; ``tx`` defaults to Adam with ``cfg.train.learning_rate``.
+    are copied in; ``tx`` defaults to Adam with ``cfg.train.learning_rate``,
+    decayed along a cosine to ``cfg.train.final_lr_fraction`` of it over
+    ``num_steps`` when that is set (the step count lives in the optimizer's
+    state, so a resumed run continues the schedule).
     """
     model = M.build(cfg.model, seed=int(cfg.seed))
     if cfg.train.get("init_from"):
         init_from_bundle(model, cfg.train.init_from)
     model.train()
     graphdef, params, rest = nnx.split(model, nnx.Param, ...)
-    tx = tx or optax.adam(cfg.train.learning_rate)
+    lr = float(cfg.train.learning_rate)
+    if cfg.train.get("final_lr_fraction") is not None:
+        lr = optax.cosine_decay_schedule(
+            lr, int(cfg.train.num_steps), alpha=float(cfg.train.final_lr_fraction)
+        )
+    tx = tx or optax.adam(lr)
     return Setup(graphdef, tx, TrainState(params, rest, tx.init(params)))
 
 

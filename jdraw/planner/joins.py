@@ -1,0 +1,128 @@
+"""Joining a stroke to the stroke that goes on from its end.
+
+The local model sometimes lifts the pen where a line meets or crosses another
+and draws the rest of the line later, from the junction on: one stroke of a
+person becomes two of the plan, end to end and heading the same way. This is
+most common on lines redrawn from a thick pen, whose junctions are not quite
+the shape of jdraw's own. :func:`join_strokes` joins such pairs: two stroke
+ends at most ``gap`` pixels apart, the line running on through them within
+``max_turn`` degrees, the pixels between them ink. The joined stroke is drawn
+in the first one's direction (the ranker may flip it later); a stroke turned
+round to be joined inks the same pixels (:func:`jdraw.planner.ranker.reverse`).
+
+Whether ``jdraw.plan`` joins is a setting of the checkpoint (its bundle's
+``planner.join``), so the paper's model plans as it always has.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from jdraw.planner.ranker import reverse
+
+GAP = 3  # pixels (Chebyshev) between the ends joined
+MAX_TURN = 45.0  # degrees the line may turn where two strokes are joined
+SPAN = 6  # pixels back along a stroke that give its heading at an end
+
+
+def _outward(p: np.ndarray, at_end: bool) -> np.ndarray | None:
+    """Unit heading out of a stroke at one end (travel direction there, continued)."""
+    q = p if at_end else p[::-1]
+    e = q[-1]
+    k = len(q) - 1
+    while k > 0 and np.abs(q[k] - e).max() < SPAN:
+        k -= 1
+    v = e - q[k]
+    n = float(np.hypot(*v))
+    return v / n if n > 0 else None
+
+
+def _link(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Points strictly between ``a`` and ``b`` so that no move is longer than 2 pixels."""
+    d = b - a
+    m = int(np.ceil(np.abs(d).max() / 2))
+    return np.rint(a + d * (np.arange(1, m)[:, None] / m)) if m > 1 else np.zeros((0, 2))
+
+
+def _on_ink(points: np.ndarray, ink: np.ndarray | None) -> bool:
+    if ink is None:
+        return True
+    from jdraw import geometry
+
+    line = geometry.render_strokes([points], shape=ink.shape)
+    return bool(ink[line].all())
+
+
+def join_strokes(strokes, ink=None, gap: int = GAP, max_turn: float = MAX_TURN) -> list:
+    """Strokes with each pair that continues one line joined into one stroke.
+
+    Args:
+      strokes: list of ``[n, 2]`` (x, y) points, in drawing order.
+      ink: optional ``bool [H, W]``; a join is made only where the pixels
+        between the two ends are ink.
+      gap: most pixels (Chebyshev) between the two ends.
+      max_turn: most degrees the line turns from one stroke to the other.
+
+    Returns:
+      The strokes, joined pairs replaced by one stroke at the first one's place.
+      The best-aligned pair is joined first, then the next, until none is left.
+    """
+    S = [np.asarray(s, np.float64) for s in strokes]
+    cos = np.cos(np.radians(max_turn))
+    while len(S) > 1:
+        ends = []  # (stroke, at_end, point, outward heading)
+        for i, p in enumerate(S):
+            if len(p) < 2:
+                continue
+            for at_end in (False, True):
+                h = _outward(p, at_end)
+                if h is not None:
+                    ends.append((i, at_end, p[-1] if at_end else p[0], h))
+        if not ends:
+            break
+        pos = np.array([e[2] for e in ends])
+        head = np.array([e[3] for e in ends])
+        owner = np.array([e[0] for e in ends])
+        near = np.abs(pos[:, None] - pos[None]).max(-1) <= gap
+        straight = head @ head.T <= -cos  # the two ends point at each other
+        ok = near & straight & (owner[:, None] != owner[None])
+        joined = False
+        for a, b in sorted(zip(*np.nonzero(ok)), key=lambda ab: head[ab[0]] @ head[ab[1]]):
+            (i, i_end, pa, _), (j, j_end, pb, _) = ends[a], ends[b]
+            first = S[i] if i_end else reverse(S[i])  # ends at pa
+            second = reverse(S[j]) if j_end else S[j]  # starts at pb
+            link = _link(pa, pb)
+            if not _on_ink(np.concatenate([pa[None], link, pb[None]]), ink):
+                continue
+            S[min(i, j)] = np.concatenate([first, link, second])
+            del S[max(i, j)]
+            joined = True
+            break
+        if not joined:
+            break
+    return S
+
+
+def join_plan(plan, targets=None, max_rows: int | None = None):
+    """A :class:`jdraw.Plan` with :func:`join_strokes` applied to each image.
+
+    ``targets`` (``bool [B, H, W]``, the ink planned) keeps joins on ink; an
+    image whose joined strokes would need more than ``max_rows`` action rows
+    keeps its strokes as they were.
+    """
+    from jdraw.plans import Plan, actions_from_strokes
+
+    strokes, rows = [], []
+    for b, s in enumerate(plan.strokes):
+        out = join_strokes(s, None if targets is None else np.asarray(targets[b], bool))
+        r = actions_from_strokes(out)
+        if max_rows is not None and len(r) > max_rows:
+            out, r = s, actions_from_strokes(s)
+        strokes.append(out)
+        rows.append(r)
+    T = max([plan.actions.shape[1], *(len(r) for r in rows)])
+    actions = np.zeros((len(rows), T, 3), np.int32)
+    for b, r in enumerate(rows):
+        actions[b, : len(r)] = r
+    lengths = np.asarray([len(r) for r in rows], np.int32)
+    return Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=plan.truncated)

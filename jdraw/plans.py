@@ -47,6 +47,21 @@ class Plan:
             ]
         return cls(strokes, actions, lengths, np.asarray(truncated, bool).reshape(len(strokes)))
 
+    @classmethod
+    def from_strokes(cls, strokes, truncated, width: int = 0) -> Plan:
+        """The plan that draws each image's ``strokes`` in order (:func:`actions_from_strokes`).
+
+        ``width``: the fewest action rows of the result (a reordered plan keeps
+        its input's width).
+        """
+        rows = [actions_from_strokes(s) for s in strokes]
+        T = max([width, *(len(r) for r in rows)])
+        actions = np.zeros((len(rows), T, 3), np.int32)
+        for b, r in enumerate(rows):
+            actions[b, : len(r)] = r
+        lengths = np.asarray([len(r) for r in rows], np.int32)
+        return cls(strokes, actions, lengths, np.asarray(truncated, bool))
+
 
 def strokes_from_actions(actions: np.ndarray, length: int, start=(0, 0)) -> list[np.ndarray]:
     """Replays ``actions[:length]`` (``[T, 3]`` dx, dy, touch) into strokes.

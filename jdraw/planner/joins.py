@@ -112,17 +112,10 @@ def join_plan(plan, targets=None, max_rows: int | None = None):
     """
     from jdraw.plans import Plan, actions_from_strokes
 
-    strokes, rows = [], []
+    strokes = []
     for b, s in enumerate(plan.strokes):
         out = join_strokes(s, None if targets is None else np.asarray(targets[b], bool))
-        r = actions_from_strokes(out)
-        if max_rows is not None and len(r) > max_rows:
-            out, r = s, actions_from_strokes(s)
+        if max_rows is not None and len(actions_from_strokes(out)) > max_rows:
+            out = s
         strokes.append(out)
-        rows.append(r)
-    T = max([plan.actions.shape[1], *(len(r) for r in rows)])
-    actions = np.zeros((len(rows), T, 3), np.int32)
-    for b, r in enumerate(rows):
-        actions[b, : len(r)] = r
-    lengths = np.asarray([len(r) for r in rows], np.int32)
-    return Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=plan.truncated)
+    return Plan.from_strokes(strokes, plan.truncated, width=plan.actions.shape[1])

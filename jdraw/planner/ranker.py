@@ -257,10 +257,4 @@ def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | Non
             if max_rows is not None and len(actions_from_strokes(out)) > max_rows:
                 out = apply_order(s, order, [False] * len(s))
             strokes.append(out)
-    rows = [actions_from_strokes(s) for s in strokes]
-    T = max([plan.actions.shape[1], *(len(r) for r in rows)])
-    actions = np.zeros((len(rows), T, 3), np.int32)
-    for b, r in enumerate(rows):
-        actions[b, : len(r)] = r
-    lengths = np.asarray([len(r) for r in rows], np.int32)
-    return Plan(strokes=strokes, actions=actions, lengths=lengths, truncated=plan.truncated)
+    return Plan.from_strokes(strokes, plan.truncated, width=plan.actions.shape[1])

@@ -124,7 +124,7 @@ def main() -> None:
         }
         if args.plan:
             p = api.plan(canon, checkpoint=args.checkpoint, order="model", canonicalise=False)
-            p = ranker.reorder(p, "ranker", rk)
+            p = ranker.reorder(p, "ranker", rk) if rk is not None else p  # else as traced
             s = metrics.score(demos, p, inputs, tol=0 if style == "clean" else 1)
             row.update(
                 stroke=s["stroke_acc"],

@@ -113,7 +113,7 @@ def provenance(workdir, cfg: ConfigDict, progress: dict) -> dict:
     says what each stage trained.
     """
     prov = {"workdir": str(workdir), "config": cfg.get("name", ""), **progress}
-    src = cfg.get("train", {}).get("init_from") if "train" in cfg else None
+    src = cfg.train.get("init_from") if "train" in cfg else None
     if src and (pathlib.Path(src) / "bundle.json").exists():
         prov["init_from"] = {"bundle": str(src), **bundle.read_meta(src).get("provenance", {})}
     return prov

@@ -96,12 +96,22 @@ def planner_settings(checkpoint=None) -> dict:
     path = _folder(checkpoint)
     if path is None:
         return {}
-    if (path / "bundle.json").exists():
-        return dict(bundle.read_meta(path).get("planner") or {})
-    if (path / "config.json").exists():
-        section = checkpoints.read_config(path).get("planner")
-        return section.to_dict() if section is not None else {}
+    for name in ("bundle.json", "config.json"):
+        if (path / name).exists():  # read once per version of the file
+            return dict(_settings(str((path / name).resolve()), (path / name).stat().st_mtime))
     return {}
+
+
+@functools.lru_cache(maxsize=16)
+def _settings(file: str, mtime: float) -> tuple:
+    del mtime  # part of the cache key only
+    path = pathlib.Path(file)
+    if path.name == "bundle.json":
+        section = bundle.read_meta(path.parent).get("planner") or {}
+    else:
+        section = checkpoints.read_config(path.parent).get("planner")
+        section = section.to_dict() if section is not None else {}
+    return tuple(sorted(section.items()))
 
 
 @functools.lru_cache(maxsize=16)

@@ -42,6 +42,12 @@ _JOIN = flags.DEFINE_enum(
     "Join strokes that go on through a junction (jdraw.planner.joins); auto: as the "
     "checkpoint says.",
 )
+_SPLIT = flags.DEFINE_string(
+    "split",
+    "auto",
+    "Cut strokes at corners and join ends with the learned splitter (jdraw.planner.splits): "
+    "auto (if the checkpoint has one), yes, no, or a folder holding another splitter.",
+)
 _RANKER = flags.DEFINE_string(
     "ranker", None, "Folder with a stroke ranker to use instead of the checkpoint's own."
 )
@@ -63,6 +69,7 @@ def main(argv):
         ranker_from=_RANKER.value,
         canonicalise=_CANON.value,
         join={"auto": None, "yes": True, "no": False}[_JOIN.value],
+        split={"auto": None, "yes": True, "no": False}.get(_SPLIT.value, _SPLIT.value),
     )
     for k, r in res.items():
         if not isinstance(r, dict):

@@ -26,6 +26,11 @@ def main(argv):
 
         print(ranker_train.train(cfg, workdir))
         return
+    if cfg.get("stage") == "splitter":
+        from jdraw.train import splitter as splitter_train
+
+        print(splitter_train.train(cfg, workdir))
+        return
     result = training.train(cfg, workdir)
     print({k: v for k, v in result.items() if k != "val"})
     if "val" in result:

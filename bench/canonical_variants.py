@@ -2,6 +2,8 @@
 
   PYTHONPATH=. nice -n 5 python bench/canonical_variants.py --n 100 --split train
   PYTHONPATH=. nice -n 5 python bench/canonical_variants.py --n 100 --no-plan  # seconds
+  PYTHONPATH=. python bench/canonical_variants.py --n 96 --split val \
+      --styles clean,cv2,thick2,thick3 --splitter runs/splitter_patch/bundle
 
 Draws N characters of a split (training by default: develop on it, not on
 the test split) in several styles, canonicalises them
@@ -10,7 +12,8 @@ junctions of the canonical image against jdraw's own drawing (a quick proxy
 for stroke breaks), tolerant pixel agreement with it, canonicalise's time
 per character, and, with ``--plan``, the default model's stroke accuracy,
 drawn/true strokes and tolerant pixel accuracy (:func:`jdraw.evaluation.metrics.score`,
-``tol=1``). About 1 s per character and style with planning on a 2-core CPU.
+``tol=1``), planned with the checkpoint's stroke splitter, none, or another's
+(``--splitter``). About 1 s per character and style with planning on a 2-core CPU.
 
 Styles: ``clean`` (jdraw's rasteriser), ``cv2`` / ``aa`` (OpenCV 1-pixel
 LINE_8 / anti-aliased lines thresholded, as :func:`jdraw.evaluation.evaluate.rasterise`),
@@ -92,6 +95,11 @@ def main() -> None:
     ap.add_argument("--fn", default="canonicalise", help="function of jdraw.images.canonical")
     ap.add_argument("--checkpoint", default=None, help="bundle folder (default: the bundled)")
     ap.add_argument("--dump", default="", help="folder for PNGs of the worst characters")
+    ap.add_argument(
+        "--splitter",
+        default="auto",
+        help="stroke splitter: auto (the checkpoint's, if any), no, or a folder holding one",
+    )
     args = ap.parse_args()
 
     ks = kanji.load(progress=False)
@@ -123,7 +131,16 @@ def main() -> None:
             "same": float(np.mean([np.array_equal(d.target, c) for d, c in zip(demos, canon)])),
         }
         if args.plan:
-            p = api.plan(canon, checkpoint=args.checkpoint, order="model", canonicalise=False)
+            split = {"auto": None, "no": False}.get(args.splitter, args.splitter)
+            # The images as drawn: plan canonicalises them as above, and the splitter sees both.
+            own = args.fn == "canonicalise"
+            p = api.plan(
+                inputs if own else canon,
+                checkpoint=args.checkpoint,
+                order="model",
+                canonicalise=own,
+                split=split,
+            )
             p = ranker.reorder(p, "ranker", rk) if rk is not None else p  # else as traced
             s = metrics.score(demos, p, inputs, tol=0 if style == "clean" else 1)
             row.update(

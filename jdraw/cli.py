@@ -121,6 +121,12 @@ def _parser() -> argparse.ArgumentParser:
         help="action limit (pen moves and lifts) per 100x100 tile; a tile that hits it is "
         "finished by tracing its skeleton (default: 1024)",
     )
+    pl.add_argument(
+        "--no-split",
+        action="store_true",
+        help="keep the strokes as the local model traced them: no learned cutting at corners "
+        "and joining of ends (trained on kanji, it may cut a Latin e at its bar)",
+    )
     pl.add_argument("--no-progress", action="store_true", help="no progress bar")
     pl.add_argument("--debug", action="store_true", help="on an error, show the Python traceback")
 
@@ -270,6 +276,7 @@ def _draw(args) -> int:
             polarity=args.polarity,
             min_gap=args.min_gap,
             progress=not args.no_progress,
+            split=False if args.no_split else None,
         )
     except load.BlankImageError as e:
         return _fail(f"{args.image}: {e}; nothing to draw")

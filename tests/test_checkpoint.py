@@ -1,5 +1,6 @@
 """The bundled checkpoint loads, plans held-out characters well, and draws the README example."""
 
+import json
 import pathlib
 
 import numpy as np
@@ -41,6 +42,10 @@ def test_bundled_checkpoints_are_present_and_trained():
     from jdraw.planner import plan as api
 
     assert api.load_ranker(None) is not None  # the default orders with its ranker
+    sp = api.load_splitter(None)  # and cuts and joins strokes with its splitter
+    assert sp is not None
+    meta = json.loads((bundle.DEFAULT_BUNDLE / "splitter.json").read_text())["provenance"]
+    assert meta["config"]["name"] == "splitter_lean" and meta["corners"] >= 10_000
 
 
 @pytest.mark.parametrize("seed", [0])
@@ -76,8 +81,6 @@ def test_readme_example_plans(tmp_path):
 
 
 def test_eval_writes_results_and_figure(tmp_path):
-    import json
-
     from jdraw.evaluation import evaluate
 
     res = evaluate.evaluate(

@@ -173,3 +173,22 @@ def test_help_states_defaults_and_gif_input(tmp_path, monkeypatch, capsys, word_
     Image.open(path).save(gif)
     assert cli.main(["draw", str(gif), "--no-progress"]) == 0
     assert "strokes" in capsys.readouterr().out
+
+
+def test_no_split_reaches_the_planner(word_photo, tmp_path, monkeypatch, capsys):
+    seen = []
+
+    def recording(images, **kwargs):
+        seen.append(kwargs.get("split", "unset"))
+        return trace_planner(images, **{k: v for k, v in kwargs.items() if k != "split"})
+
+    monkeypatch.setattr(tiling, "default_planner", recording)
+    path, _, _ = word_photo
+    svg = str(tmp_path / "o.svg")
+    assert cli.main(["draw", str(path), "--no-progress", "--svg", svg, "--no-split"]) == 0
+    assert seen and set(seen) == {False}
+    seen.clear()
+    assert cli.main(["draw", str(path), "--no-progress", "--svg", svg]) == 0
+    assert seen and set(seen) == {"unset"}  # the checkpoint's own setting
+    with pytest.raises(ValueError, match="split"):
+        tiling.plan_image(np.zeros((50, 50), np.uint8), planner=trace_planner, split=False)

@@ -69,10 +69,14 @@ class Demo:
     Attributes:
       strokes: list of ``[M_i + 1, 2]`` int64 pen positions (x, y), in order.
       target: ``bool [100, 100]``, the union of the strokes' pixels.
+      drawn: ``bool [100, 100]`` the ink as drawn, before it was canonicalised,
+        for a character drawn another way (:func:`jdraw.data.variants.sample`);
+        ``None`` when it is the target.
     """
 
     strokes: list[np.ndarray]
     target: np.ndarray
+    drawn: np.ndarray | None = None
 
     def actions(self, start=(0, 0)) -> np.ndarray:
         """``int32 [T, 3]`` (dx, dy, touch) as :class:`jdraw.Plan` stores them."""

@@ -161,6 +161,10 @@ def sample(ks: kanji.KanjiSet, i: int, rng: np.random.Generator, strength: float
         ctrl = [c @ a.T + t for c in ctrl]
     if style == "clean":
         return D.from_control_points(ctrl)
-    ink = canonical.canonicalise(draw(ctrl, style, step=float(rng.uniform(1.0, 3.0))))
+    drawn = draw(ctrl, style, step=float(rng.uniform(1.0, 3.0)))
+    ink = canonical.canonicalise(drawn)
     d = on_lines(ctrl, ink, reach=3.5 if style == "px5" else 2.5)
-    return d if d is not None else D.from_control_points(ctrl)
+    if d is None:
+        return D.from_control_points(ctrl)
+    d.drawn = drawn
+    return d

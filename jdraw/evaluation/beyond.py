@@ -4,7 +4,8 @@
 
 Reads the ``eval.py`` results ``beyond_{name}[_clean|_variants].json`` of the
 paper's model (``paper``, scored with our ranker too) and of ours (``ours``,
-``fast_local``, ``robust``, ``robust_canon``, ``robust_join``, ``lean``) and
+``fast_local``, ``robust``, ``robust_canon``, ``robust_join``, ``lean``,
+``lean_split``) and
 writes a Markdown table:
 for each planner and stroke order, order agreement over matched pairs and
 over all pairs, exact order, direction, stroke and pixel accuracy and drawn /
@@ -43,7 +44,13 @@ ROWS = (
         "model",
         "ours, lean: 8/16-channel local model, half-resolution start model, joins; as traced",
     ),
-    ("lean", "ranker", "ours, lean + its ranker (bundled default)"),
+    ("lean", "ranker", "ours, lean + its ranker (previous default)"),
+    (
+        "lean_split",
+        "model",
+        "ours, lean + learned splitter: strokes cut at corners, joined, crumbs drawn on; as traced",
+    ),
+    ("lean_split", "ranker", "ours, lean + splitter + ranker (bundled default)"),
 )
 
 # Files merged per planner, later ones overriding: whole test split, then other drawings.

@@ -54,6 +54,7 @@ def plan_chars(
     style: str | None = None,
     canonicalise: bool = True,
     join: bool | None = None,
+    split=None,
 ):
     """Plans characters ``idx`` (no augmentation) as traced (``order="model"``).
 
@@ -85,6 +86,7 @@ def plan_chars(
             order="model",
             canonicalise=canonicalise,
             join=join,
+            split=split,
         )
         parts.append(Plan(p.strokes[:n], p.actions[:n], p.lengths[:n], p.truncated[:n]))
     T = max(p.actions.shape[1] for p in parts)
@@ -115,6 +117,7 @@ def evaluate(
     ranker_from=None,
     canonicalise: bool = True,
     join: bool | None = None,
+    split=None,
 ) -> dict:
     """Scores a checkpoint; writes ``{out_dir}/{name}.json`` and ``{name}_fig3.png``.
 
@@ -131,6 +134,8 @@ def evaluate(
       canonicalise: passed to ``jdraw.plan`` (False reproduces Table I as
         measured before canonical inputs existed).
       join: passed to ``jdraw.plan`` (``None``: as the checkpoint says).
+      split: passed to ``jdraw.plan`` (``None``: the checkpoint's splitter if it
+        has one; a folder: the splitter there).
 
     Each split's entry holds the metrics of the order ``jdraw.plan`` uses by
     default for this checkpoint (the ranker's if it has one) and, under
@@ -146,6 +151,7 @@ def evaluate(
         "checkpoint": str(checkpoint) if checkpoint is not None else "bundled default",
         "default_order": default,
         "join": join,
+        "split": split if split is None or isinstance(split, bool) else str(split),
     }
     t0 = time.time()
     test = kanji.split_indices(ks, "test")
@@ -172,6 +178,7 @@ def evaluate(
             style=style,
             canonicalise=canonicalise,
             join=join,
+            split=split,
         )
         plan_s = time.time() - t
         by = {}

@@ -172,3 +172,38 @@ def fill(model, arrays: dict[str, np.ndarray], *, partial: bool = False) -> int:
     nnx.replace_by_pure_dict(state, traverse_util.unflatten_dict(pure))
     nnx.update(model, state)
     return len(use)
+
+
+def save_net(net, out_dir, stem: str, meta: dict) -> pathlib.Path:
+    """Writes a small net stored beside a bundle's model: ``{stem}.npz`` and ``{stem}.json``.
+
+    ``meta`` is what :func:`load_net` needs to build the net again (its sizes)
+    and its provenance.
+    """
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    np.savez(out / f"{stem}.npz", **state_arrays(net))
+    (out / f"{stem}.json").write_text(json.dumps(meta, indent=2) + "\n")
+    return out
+
+
+def load_net(bundle_dir, stem: str, build):
+    """The net ``{stem}.npz`` in a bundle folder, or ``None`` if it has no ``{stem}.json``.
+
+    ``build(meta)`` makes the empty net from the json (and may raise
+    :class:`BundleError`); its arrays are then filled from the npz.
+    """
+    d = pathlib.Path(bundle_dir)
+    if not (d / f"{stem}.json").exists():
+        return None
+    model = build(json.loads((d / f"{stem}.json").read_text()))
+    try:
+        with np.load(d / f"{stem}.npz") as z:
+            arrays = {k: z[k] for k in z.files}
+    except (OSError, ValueError) as e:
+        raise BundleError(f"{d / f'{stem}.npz'}: unreadable ({e})") from e
+    try:
+        fill(model, arrays)
+    except BundleError as e:
+        raise BundleError(f"{d / f'{stem}.npz'}: {e}") from e
+    return model

@@ -146,6 +146,28 @@ def _load_ranker(path: str):
     return ranker.load(path)
 
 
+def load_splitter(checkpoint=None):
+    """The stroke splitter beside a bundle's model (:mod:`jdraw.planner.splits`), or ``None``."""
+    if isinstance(checkpoint, nnx.Module):
+        return None
+    path = _folder(checkpoint)
+    return _splitter_in(path) if path is not None else None
+
+
+def _splitter_in(folder) -> object | None:
+    meta = pathlib.Path(folder) / "splitter.json"
+    mtime = meta.stat().st_mtime if meta.exists() else 0.0
+    return _load_splitter(str(pathlib.Path(folder).resolve()), mtime)
+
+
+@functools.lru_cache(maxsize=8)
+def _load_splitter(path: str, mtime: float):
+    from jdraw.planner import splits
+
+    del mtime  # part of the cache key only: a splitter written again is read again
+    return splits.load(path)
+
+
 def _bucket(n: int) -> int:
     """Queue length for ``n`` images: the next power of two, so few shapes compile."""
     return 1 << max(0, n - 1).bit_length()
@@ -224,6 +246,7 @@ def plan(
     loop: str = "slots",
     devices=None,
     join: bool | None = None,
+    split: bool | str | os.PathLike | None = None,
 ) -> Plan:
     """Plans how to draw each image.
 
@@ -256,6 +279,11 @@ def plan(
       join: join a stroke to the one that goes on from its end through a
         junction (:mod:`jdraw.planner.joins`); ``None``: as the checkpoint says
         (:func:`planner_settings`; the paper's model does not).
+      split: cut strokes at corners where one person's stroke ends and the
+        next begins, and join ends that are one line, as the checkpoint's
+        learned splitter says (:mod:`jdraw.planner.splits`); ``None``: if the
+        checkpoint has one; or a folder holding another splitter to use.
+        ``True`` with a checkpoint that has none is an error.
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
@@ -265,7 +293,7 @@ def plan(
 
     if order not in ("auto", *ranker.ORDERS):
         raise ValueError(f"order must be 'auto' or one of {ranker.ORDERS}, got {order!r}")
-    targets = as_targets(images)
+    targets = drawn = as_targets(images)
     if canonicalise:
         targets = np.stack([canonical.canonicalise(t) for t in targets])
     max_steps = validate.positive_int("max_steps", max_steps, optional=True)
@@ -275,6 +303,14 @@ def plan(
     batch_size = validate.positive_int("batch_size", batch_size)
     global_batch = validate.positive_int("global_batch", global_batch)
     model = load_model(validate.checkpoint(checkpoint))
+    if isinstance(split, (str, os.PathLike)):
+        sp = _splitter_in(split)
+        if sp is None:
+            raise ValueError(f"split={str(split)!r}: no splitter.json there")
+    else:
+        sp = load_splitter(checkpoint) if split is not False else None
+    if split is True and sp is None:
+        raise ValueError("split=True needs a checkpoint with a stroke splitter; this one has none")
     labels = np.stack([state.component_labels(t) for t in targets])
     kind = getattr(model, "kind", "two_scale")
     if loop == "slots" and kind != "global_only":  # the global-only ablation keeps vmap
@@ -295,6 +331,10 @@ def plan(
         from jdraw.planner import joins
 
         result = joins.join_plan(result, targets, max_rows=limits.max_steps)
+    if sp is not None:
+        from jdraw.planner import splits
+
+        result = splits.edit_plan(result, sp, targets, max_rows=limits.max_steps, drawn=drawn)
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"

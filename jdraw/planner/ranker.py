@@ -19,7 +19,6 @@ plan inks exactly the same pixels.
 
 from __future__ import annotations
 
-import json
 import pathlib
 
 import jax
@@ -40,7 +39,9 @@ from jdraw.planner.stroke_tokens import (  # noqa: F401 (the ranker's inputs, na
 from jdraw.plans import actions_from_strokes
 
 
-class _MLP(nnx.Module):
+class MLP(nnx.Module):
+    """Two hidden ReLU layers and one output: the ranker's and the splitter's small nets."""
+
     def __init__(self, din: int, hidden: int, rngs: nnx.Rngs):
         self.l1 = nnx.Linear(din, hidden, rngs=rngs)
         self.l2 = nnx.Linear(hidden, hidden, rngs=rngs)
@@ -55,8 +56,8 @@ class Ranker(nnx.Module):
 
     def __init__(self, hidden: int = 64, *, rngs: nnx.Rngs):
         self.hidden = hidden
-        self.pair_net = _MLP(PAIR_FEATURES, hidden, rngs)
-        self.heading_net = _MLP(STROKE_FEATURES, hidden, rngs)
+        self.pair_net = MLP(PAIR_FEATURES, hidden, rngs)
+        self.heading_net = MLP(STROKE_FEATURES, hidden, rngs)
 
     def pair(self, x_ab, x_ba):
         """Log-odds that a precedes b, from both orders' inputs ``[..., PAIR_FEATURES]``."""
@@ -191,33 +192,17 @@ def save(ranker: Ranker, out_dir, provenance: dict | None = None) -> pathlib.Pat
     """Writes ``ranker.npz`` and ``ranker.json`` into a bundle folder."""
     from jdraw.model import bundle
 
-    out = pathlib.Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    np.savez(out / "ranker.npz", **bundle.state_arrays(ranker))
     meta = {"hidden": ranker.hidden, "provenance": provenance or {}}
-    (out / "ranker.json").write_text(json.dumps(meta, indent=2) + "\n")
-    return out
+    return bundle.save_net(ranker, out_dir, "ranker", meta)
 
 
 def load(bundle_dir) -> Ranker | None:
     """The ranker stored in a bundle folder, or ``None`` if it has none."""
     from jdraw.model import bundle
 
-    d = pathlib.Path(bundle_dir)
-    if not (d / "ranker.json").exists():
-        return None
-    meta = json.loads((d / "ranker.json").read_text())
-    model = Ranker(int(meta.get("hidden", 64)), rngs=nnx.Rngs(0))
-    try:
-        with np.load(d / "ranker.npz") as z:
-            arrays = {k: z[k] for k in z.files}
-    except (OSError, ValueError) as e:
-        raise bundle.BundleError(f"{d / 'ranker.npz'}: unreadable ({e})") from e
-    try:
-        bundle.fill(model, arrays)
-    except bundle.BundleError as e:
-        raise bundle.BundleError(f"{d / 'ranker.npz'}: {e}") from e
-    return model
+    return bundle.load_net(
+        bundle_dir, "ranker", lambda meta: Ranker(int(meta.get("hidden", 64)), rngs=nnx.Rngs(0))
+    )
 
 
 # ----------------------------------------------------------------------------

@@ -81,8 +81,8 @@ class ImagePlan:
         return float(sum(np.hypot(*np.diff(s, axis=0).T).sum() for s in self.strokes if len(s) > 1))
 
 
-def _run_planner(planner, images, checkpoint, max_steps):
-    kwargs = {}
+def _run_planner(planner, images, checkpoint, max_steps, split=None):
+    kwargs = {} if split is None else {"split": split}
     if checkpoint is not None:
         kwargs["checkpoint"] = checkpoint
     if max_steps is not None:
@@ -126,6 +126,7 @@ def plan_image(
     simplify_tol: float = 0.5,
     join_lifts: bool = True,
     progress: bool = True,
+    split: bool | None = None,
 ) -> ImagePlan:
     """Plans how to draw an image of any size; strokes in input pixel coordinates.
 
@@ -145,6 +146,9 @@ def plan_image(
         meet across a tile border are always joined. A drawing fitted to one
         canvas is drawn exactly as planned.
       progress: show a progress bar (on a terminal) when there are several batches.
+      split: passed to :func:`jdraw.plan` (``False``: no learned cutting and
+        joining of strokes; ``None``: as the checkpoint says). Only with the
+        default planner.
 
     Raises:
       jdraw.images.load.ImageError: unreadable or blank image; jdraw.validate.InputError
@@ -153,6 +157,8 @@ def plan_image(
     if planner is None:
         planner = default_planner
         checkpoint = validate.checkpoint(checkpoint)
+    elif split is not None:
+        raise validate.InputError("split= is jdraw.plan's option; give it to your planner")
     max_steps = validate.positive_int("max_steps", max_steps, optional=True)
     validate.choice("polarity", polarity, ("auto", "dark", "light"))
     min_gap = validate.positive("min_gap", min_gap)
@@ -179,7 +185,9 @@ def plan_image(
     )
     for start in batches:
         chunk = tiles[start : start + batch_size]
-        strokes, trunc = _run_planner(planner, [t.image for t in chunk], checkpoint, max_steps)
+        strokes, trunc = _run_planner(
+            planner, [t.image for t in chunk], checkpoint, max_steps, split
+        )
         truncated += int(trunc.sum())
         for t, s in zip(chunk, strokes, strict=True):
             s, n = _complete(t.image, [np.asarray(p, np.float64).reshape(-1, 2) for p in s])

@@ -112,6 +112,31 @@ def _chunk_path(workdir: pathlib.Path, kind: str, k: int) -> pathlib.Path:
     return workdir / "examples" / f"{kind}_{k:04d}.npz"
 
 
+def traced_chunk(cfg, ks, pool, kind: str, k: int):
+    """Chunk ``k`` of ``cfg.chunk`` augmented training characters and their strokes.
+
+    ``kind="traced"``: drawn as ``cfg.get("styles")`` says (:func:`jdraw.data.variants.sample`)
+    and planned by ``cfg.tracer`` (its own noisy strokes); ``"demo"``: KanjiVG's
+    strokes as they are. Returns the demonstrations and each one's strokes.
+    """
+    from jdraw.planner import plan as api
+
+    rng = np.random.default_rng([int(cfg.seed), k, int(kind == "demo")])
+    styles = variants.weights(cfg.get("styles", None) if kind == "traced" else None)
+    demos = [
+        demo.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment))
+        if styles is None
+        else variants.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment), styles)
+        for _ in range(cfg.chunk)
+    ]
+    if kind == "traced":
+        targets = np.stack([d.target for d in demos])
+        drawn = api.plan(targets, checkpoint=cfg.tracer, order="model").strokes
+    else:
+        drawn = [d.strokes for d in demos]
+    return demos, drawn
+
+
 def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     """Labelled examples in chunks of ``cfg.chunk`` augmented training characters.
 
@@ -120,8 +145,6 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     (:func:`jdraw.data.variants.sample`); ``cfg.get("demo_chars", 0)`` more
     contribute KanjiVG's strokes as they are. One npz per chunk, written whole or not at all.
     """
-    from jdraw.planner import plan as api
-
     workdir = pathlib.Path(workdir)
     (workdir / "examples").mkdir(parents=True, exist_ok=True)
     ks = kanji.load(progress=progress)
@@ -139,36 +162,33 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
         paths.append(path)
         if path.exists():
             continue
-        rng = np.random.default_rng([int(cfg.seed), k, int(kind == "demo")])
-        styles = variants.weights(cfg.get("styles", None) if kind == "traced" else None)
-        demos = [
-            demo.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment))
-            if styles is None
-            else variants.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment), styles)
-            for _ in range(cfg.chunk)
-        ]
-        if kind == "traced":
-            targets = np.stack([d.target for d in demos])
-            drawn = api.plan(targets, checkpoint=cfg.tracer, order="model").strokes
-        else:
-            drawn = [d.strokes for d in demos]
+        demos, drawn = traced_chunk(cfg, ks, pool, kind, k)
         parts = [
             examples(s, ranker.stroke_masks(d.strokes), d.strokes) for d, s in zip(demos, drawn)
         ]
-        parts = [p for p in parts if p is not None]
-        arrays = [np.concatenate([p[i] for p in parts]) for i in range(5)]
-        tmp = path.with_suffix(".tmp.npz")
-        np.savez(tmp, *arrays)
-        tmp.rename(path)  # a chunk is there whole or not at all
+        write_chunk(path, [p for p in parts if p is not None])
     return paths
 
 
-def load_examples(paths) -> tuple[np.ndarray, ...]:
+def write_chunk(path: pathlib.Path, parts) -> None:
+    """Saves per-character tuples of arrays, stacked, as one npz: there whole or not at all."""
+    arrays = [np.concatenate([p[i] for p in parts]) for i in range(len(parts[0]))]
+    tmp = path.with_suffix(".tmp.npz")
+    np.savez(tmp, *arrays)
+    tmp.rename(path)
+
+
+def read_chunks(paths, n: int) -> tuple[np.ndarray, ...]:
+    """The ``n`` arrays of every chunk :func:`write_chunk` saved, stacked."""
     parts = []
     for p in paths:
         with np.load(p) as z:
-            parts.append([z[f"arr_{i}"] for i in range(5)])
-    return tuple(np.concatenate([p[i] for p in parts]) for i in range(5))
+            parts.append([z[f"arr_{i}"] for i in range(n)])
+    return tuple(np.concatenate([p[i] for p in parts]) for i in range(n))
+
+
+def load_examples(paths) -> tuple[np.ndarray, ...]:
+    return read_chunks(paths, 5)
 
 
 def train(cfg, workdir, progress: bool = True) -> dict:

@@ -1,0 +1,188 @@
+"""Training the stroke splitter (:mod:`jdraw.planner.splits`) on the tracer's own strokes.
+
+The tracer (a planner bundle) plans augmented training characters drawn in
+several ways, as for the ranker (:func:`jdraw.train.ranker.traced_chunk`).
+Every sharp corner of a drawn stroke becomes a split example, labelled by
+whether the reference strokes nearest the line on its two sides differ
+(:func:`jdraw.planner.splits.corner_labels`). The strokes are then cut at the
+true splits, and every pair of stroke ends close together on ink becomes a
+join example, labelled by whether the line near both ends is one reference
+stroke. Examples are saved in the workdir a chunk at a time, so an
+interrupted run resumes where it stopped; the nets train in seconds.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+import time
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+import optax
+from flax import nnx
+
+from jdraw.data import kanji
+from jdraw.planner import splits
+from jdraw.train.ranker import read_chunks, traced_chunk, write_chunk
+
+
+def examples(traced, refs, ink, drawn=None) -> tuple[np.ndarray, ...]:
+    """Split and join examples of one character: ``(xs, ys, xj, yj)``.
+
+    Args:
+      traced: the tracer's strokes; refs: the reference strokes; ink: the ink
+        planned (canonical); drawn: the ink as drawn before it was canonicalised.
+    """
+    xs, ys, cut = [], [], []
+    strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in traced if len(s)]
+    keys, feats = splits.all_corners(strokes, drawn)
+    by_stroke: dict[int, list[int]] = {}
+    for b, k in keys:
+        by_stroke.setdefault(b, []).append(k)
+    labels = {
+        b: splits.corner_labels(strokes[b], np.asarray(ks), refs) for b, ks in by_stroke.items()
+    }
+    seen: dict[int, int] = {}
+    for b, _ in keys:
+        ys.append(labels[b][seen.get(b, 0)])
+        seen[b] = seen.get(b, 0) + 1
+    xs = feats
+    for b, p in enumerate(strokes):
+        ks = np.asarray(by_stroke.get(b, []), np.int64)
+        cut += splits.split_at(p, ks[labels[b]]) if len(ks) and labels[b].any() else [p]
+    pairs, xj = splits.all_pairs(cut, ink, drawn)
+    yj = [
+        splits.end_owner(cut[i], ie, refs) == splits.end_owner(cut[j], je, refs)
+        for i, ie, j, je in pairs
+    ]
+    return (
+        np.asarray(xs, np.float32).reshape(-1, splits.CORNER_FEATURES),
+        np.asarray(ys, np.float32),
+        xj,
+        np.asarray(yj, np.float32),
+    )
+
+
+def fit(
+    data,
+    *,
+    steps: int = 3000,
+    batch: int = 512,
+    lr: float = 3e-3,
+    seed: int = 0,
+    patches: bool = True,
+    hidden: int = 64,
+):
+    """Fits a :class:`jdraw.planner.splits.Splitter` on stacked :func:`examples`.
+
+    ``patches=False`` fits nets that see the geometry only (the first
+    features of each example).
+    """
+    xs, ys, xj, yj = data
+    if not patches:
+        xs, xj = xs[:, : splits.GEOMETRY_FEATURES], xj[:, : splits.JOIN_GEOMETRY]
+    model = splits.Splitter(hidden, patches, rngs=nnx.Rngs(seed))
+    tx = optax.adam(lr)
+    graphdef, params = nnx.split(model, nnx.Param)
+    opt = tx.init(params)
+
+    def loss_fn(params, a, la, b, lb):
+        m = nnx.merge(graphdef, params)
+        za, zb = m.split_net(a), m.join_net(b)
+        loss = jnp.mean(optax.sigmoid_binary_cross_entropy(za, la)) + jnp.mean(
+            optax.sigmoid_binary_cross_entropy(zb, lb)
+        )
+        return loss, (jnp.mean((za > 0) == (la > 0.5)), jnp.mean((zb > 0) == (lb > 0.5)))
+
+    @jax.jit
+    def step(params, opt, a, la, b, lb):
+        (loss, accs), g = jax.value_and_grad(loss_fn, has_aux=True)(params, a, la, b, lb)
+        upd, opt = tx.update(g, opt, params)
+        return optax.apply_updates(params, upd), opt, loss, accs
+
+    rng = np.random.default_rng(seed)
+    logs = []
+    for s in range(steps):
+        i = rng.integers(len(xs), size=batch)
+        j = rng.integers(len(xj), size=batch)
+        params, opt, loss, accs = step(params, opt, xs[i], ys[i], xj[j], yj[j])
+        if s % 500 == 0 or s == steps - 1:
+            logs.append(
+                {
+                    "step": s,
+                    "loss": float(loss),
+                    "split_acc": float(accs[0]),
+                    "join_acc": float(accs[1]),
+                }
+            )
+    nnx.update(model, params)
+    return model, logs
+
+
+def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
+    """Examples in chunks of ``cfg.chunk`` traced characters, one npz each, whole or not at all."""
+    workdir = pathlib.Path(workdir)
+    (workdir / "examples").mkdir(parents=True, exist_ok=True)
+    ks = kanji.load(progress=progress)
+    pool = kanji.split_indices(ks, "train")
+    jobs = range(int(np.ceil(cfg.chars / cfg.chunk)))
+    if progress:
+        from tqdm import tqdm
+
+        jobs = tqdm(jobs, desc="examples", unit="chunk")
+    paths = []
+    for k in jobs:
+        path = workdir / "examples" / f"traced_{k:04d}.npz"
+        paths.append(path)
+        if path.exists():
+            continue
+        demos, drawn = traced_chunk(cfg, ks, pool, "traced", k)
+        write_chunk(path, [examples(s, d.strokes, d.target, d.drawn) for d, s in zip(demos, drawn)])
+    return paths
+
+
+def load_examples(paths) -> tuple[np.ndarray, ...]:
+    data = read_chunks(paths, 4)
+    if data[0].shape[1] != splits.CORNER_FEATURES:
+        raise ValueError(
+            f"{pathlib.Path(paths[0]).parent}: examples of {data[0].shape[1]} features, this "
+            f"jdraw makes {splits.CORNER_FEATURES}; delete them to remake them"
+        )
+    return data
+
+
+def train(cfg, workdir, progress: bool = True) -> dict:
+    """Makes (or reuses) the examples, fits the splitter, writes it into ``cfg.out``."""
+    workdir = pathlib.Path(workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    (workdir / "config.json").write_text(cfg.to_json_best_effort(indent=2) + "\n")
+    t0 = time.time()
+    paths = make_examples(cfg, workdir, progress=progress)
+    t1 = time.time()
+    data = load_examples(paths)
+    model, logs = fit(
+        data,
+        steps=int(cfg.steps),
+        batch=int(cfg.batch),
+        lr=float(cfg.learning_rate),
+        seed=int(cfg.seed),
+        patches=bool(cfg.get("patches", True)),
+        hidden=int(cfg.get("hidden", 64)),
+    )
+    t2 = time.time()
+    result = {
+        "corners": int(len(data[0])),
+        "corner_splits": int(data[1].sum()),
+        "end_pairs": int(len(data[2])),
+        "end_joins": int(data[3].sum()),
+        "trace_s_this_call": t1 - t0,
+        "fit_s": t2 - t1,
+        "logs": logs,
+    }
+    out = splits.save(model, cfg.out, provenance={"config": json.loads(cfg.to_json()), **result})
+    splits.save(model, workdir / "splitter")
+    (workdir / "result.json").write_text(json.dumps(result, indent=2) + "\n")
+    result["out"] = str(out)
+    return result

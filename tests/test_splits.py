@@ -1,0 +1,185 @@
+"""The learned stroke splitter and joiner (jdraw.planner.splits, jdraw.train.splitter)."""
+
+import numpy as np
+import pytest
+from flax import nnx
+
+from jdraw import geometry
+from jdraw.planner import splits
+from jdraw.plans import Plan
+from jdraw.train import splitter as splitter_train
+
+
+def _line(x0, y0, x1, y1):
+    n = max(abs(x1 - x0), abs(y1 - y0))
+    t = np.arange(n + 1)[:, None] / n
+    return np.rint(np.array([x0, y0]) + t * np.array([x1 - x0, y1 - y0]))
+
+
+def _ell():
+    """Down the left side, then along the bottom: one polyline with one right angle."""
+    return np.concatenate([_line(20, 20, 20, 60), _line(20, 60, 70, 60)[1:]])
+
+
+def _splitter(split_bias: float, join_bias: float) -> splits.Splitter:
+    """A splitter whose nets say the same for every input (zero weights, a set bias)."""
+    sp = splits.Splitter(hidden=8, patches=False, rngs=nnx.Rngs(0))
+    for net, bias in ((sp.split_net, split_bias), (sp.join_net, join_bias)):
+        for layer in (net.l1, net.l2, net.out):
+            layer.kernel[...] = layer.kernel[...] * 0
+        net.out.bias[...] = net.out.bias[...] * 0 + bias
+    return sp
+
+
+def test_corners_finds_a_right_angle_and_no_corner_on_lines_and_arcs():
+    ell = _ell()
+    (k,) = splits.corners(ell)
+    assert tuple(ell[k]) == (20, 60)
+    assert len(splits.corners(_line(10, 10, 90, 40))) == 0
+    t = np.linspace(0, np.pi / 2, 60)  # a quarter circle of radius 40: turns gently
+    arc = np.stack([50 + 40 * np.cos(t), 50 + 40 * np.sin(t)], 1)
+    assert len(splits.corners(arc)) == 0
+    # Within MIN_ARM pixels of an end a hook is not a corner.
+    hook = np.concatenate([_line(20, 20, 20, 60), _line(20, 60, 22, 60)[1:]])
+    assert len(splits.corners(hook)) == 0
+
+
+def test_corner_labels_split_where_two_reference_strokes_meet_only():
+    ell = _ell()
+    ks = splits.corners(ell)
+    two = [_line(20, 20, 20, 60), _line(20, 60, 70, 60)]  # like 口's side and bottom
+    one = [ell]  # one stroke that turns, like 山's second
+    assert splits.corner_labels(ell, ks, two).tolist() == [True]
+    assert splits.corner_labels(ell, ks, one).tolist() == [False]
+
+
+def test_split_and_join_keep_every_pixel_and_join_reverses_as_needed():
+    ell = _ell()
+    parts = splits.split_at(ell, splits.corners(ell))
+    assert len(parts) == 2 and tuple(parts[0][-1]) == tuple(parts[1][0]) == (20, 60)
+    np.testing.assert_array_equal(geometry.render_strokes(parts), geometry.render_strokes([ell]))
+    a, b, c = _line(10, 50, 30, 50), _line(52, 50, 31, 50), _line(53, 50, 80, 50)
+    (one,) = splits.join_pairs([a, b, c], [(0, True, 1, True), (1, False, 2, False)])
+    assert tuple(one[0]) == (10, 50) and tuple(one[-1]) == (80, 50)
+    assert np.abs(np.diff(one, axis=0)).max() <= 2
+    np.testing.assert_array_equal(
+        geometry.render_strokes([one]), geometry.render_strokes([a, b, c])
+    )
+    # A pair that would close a ring of strokes, or reuse an end, is skipped.
+    ring = splits.join_pairs(
+        [a, b], [(0, True, 1, True), (0, False, 1, False), (0, True, 1, False)]
+    )
+    assert len(ring) == 1
+
+
+def test_end_pairs_need_near_ends_on_ink():
+    a, b = _line(10, 50, 30, 50), _line(33, 50, 60, 50)
+    assert splits.end_pairs([a, b]) == [(0, True, 1, False)]
+    assert splits.end_pairs([a, _line(34, 50, 60, 50)]) == []  # 4 px apart
+    ink = geometry.render_strokes([a, b])
+    assert splits.end_pairs([a, b], ink) == []  # the gap between them is not ink
+    ink[50, 31:33] = True
+    assert splits.end_pairs([a, b], ink) == [(0, True, 1, False)]
+    _, x = splits.all_pairs([a, b])
+    assert x.shape == (1, splits.JOIN_FEATURES)
+    _, x = splits.all_corners([_ell(), a])
+    assert x.shape == (1, splits.CORNER_FEATURES)
+
+
+def test_edit_plan_follows_the_nets_and_inks_the_same_pixels():
+    ell, far = _ell(), _line(60, 10, 90, 10)
+    a, b = _line(10, 85, 30, 85), _line(31, 85, 60, 85)
+    plan = Plan.from_strokes([[ell, far, a, b]], np.array([False]))
+    cut = splits.edit_plan(plan, _splitter(5.0, -5.0))  # split every corner, join nothing
+    assert len(cut.strokes[0]) == 5
+    kept = splits.edit_plan(plan, _splitter(-5.0, -5.0))
+    assert len(kept.strokes[0]) == 4
+    joined = splits.edit_plan(plan, _splitter(-5.0, 5.0))  # a and b are one line
+    assert len(joined.strokes[0]) == 3
+    for p in (cut, kept, joined):
+        np.testing.assert_array_equal(
+            geometry.render_strokes(p.strokes[0]), geometry.render_strokes([ell, far, a, b])
+        )
+
+
+@pytest.mark.parametrize("patches", [True, False])
+def test_splitter_round_trips_through_a_bundle_folder(tmp_path, patches):
+    import json
+
+    sp = splits.Splitter(hidden=8, patches=patches, rngs=nnx.Rngs(3))
+    splits.save(sp, tmp_path, provenance={"config": {"name": "t"}})
+    back = splits.load(tmp_path)
+    assert back.patches == patches
+    x = splits.all_corners([_ell()])[1]
+    x = x if patches else x[:, : splits.GEOMETRY_FEATURES]
+    np.testing.assert_allclose(np.asarray(back.split_net(x)), np.asarray(sp.split_net(x)))
+    assert splits.load(tmp_path / "none") is None
+    meta = json.loads((tmp_path / "splitter.json").read_text())
+    meta["corner_features"] += 1  # made by another version of the features
+    (tmp_path / "splitter.json").write_text(json.dumps(meta))
+    with pytest.raises(Exception, match="retrain"):
+        splits.load(tmp_path)
+    (tmp_path / "splitter.npz").write_bytes(b"not an npz")
+    meta["corner_features"] -= 1
+    (tmp_path / "splitter.json").write_text(json.dumps(meta))
+    with pytest.raises(Exception, match="splitter.npz"):
+        splits.load(tmp_path)
+
+
+def test_patches_show_the_ink_as_drawn_and_the_strokes_around_a_corner():
+    ell = _ell()
+    img = np.zeros((100, 100), bool)
+    img[58:63, 18:23] = True  # a square lump of ink at the corner (20, 60)
+    p = splits.patch(img, (20, 60))
+    side = 2 * splits.PATCH + 1
+    assert p.shape == (side * side,) and p.reshape(side, side)[3:8, 3:8].all() and p.sum() == 25
+    edge = np.ones((100, 100), bool)
+    assert splits.patch(edge, (0, 0)).sum() == (splits.PATCH + 1) ** 2  # off the canvas: no ink
+    _, thin = splits.all_corners([ell])
+    _, thick = splits.all_corners([ell], img)
+    g = splits.GEOMETRY_FEATURES
+    np.testing.assert_array_equal(thin[:, :g], thick[:, :g])
+    assert not np.array_equal(thin[:, g:], thick[:, g:])  # the drawn ink is seen
+
+
+def test_examples_label_corners_and_joins_from_the_reference_strokes():
+    refs = [_line(20, 20, 20, 60), _line(20, 60, 70, 60)]
+    ink = geometry.render_strokes(refs)
+    xs, ys, xj, yj = splitter_train.examples([_ell()], refs, ink)
+    assert xs.shape == (1, splits.CORNER_FEATURES) and ys.tolist() == [1.0]
+    assert len(xj) == 1 and yj.tolist() == [0.0]  # cut there: the two parts are not one line
+    line = [_line(10, 50, 40, 50)]
+    a, b = _line(10, 50, 24, 50), _line(26, 50, 40, 50)
+    xs, ys, xj, yj = splitter_train.examples([a, b], line, geometry.render_strokes(line))
+    assert len(xs) == 0 and yj.tolist() == [1.0]  # one reference line cut in two
+
+
+def test_fit_learns_a_rule_both_nets_can_see():
+    rng = np.random.default_rng(0)
+    xs = rng.normal(size=(400, splits.CORNER_FEATURES)).astype(np.float32)
+    xj = rng.normal(size=(400, splits.JOIN_FEATURES)).astype(np.float32)
+    ys, yj = (xs[:, 0] > 0).astype(np.float32), (xj[:, 1] > 0).astype(np.float32)
+    model, logs = splitter_train.fit((xs, ys, xj, yj), steps=300, batch=128, hidden=16)
+    assert logs[-1]["split_acc"] > 0.9 and logs[-1]["join_acc"] > 0.9
+    assert model.patches
+
+
+def test_plan_refuses_split_without_a_splitter():
+    from jdraw.planner import plan as api
+
+    with pytest.raises(ValueError, match="splitter"):
+        api.plan(np.zeros((1, 100, 100), bool), checkpoint="jdraw/checkpoints/paper", split=True)
+
+
+def test_plan_takes_a_splitter_from_a_folder(tmp_path):
+    from jdraw.planner import plan as api
+
+    img = np.zeros((1, 100, 100), bool)
+    img[0, 20:60, 20] = True
+    img[0, 60, 20:70] = True
+    with pytest.raises(ValueError, match="no splitter"):
+        api.plan(img, checkpoint="jdraw/checkpoints/paper", split=tmp_path)
+    splits.save(_splitter(9.0, -9.0), tmp_path)  # cut at every corner
+    (cut,) = api.plan(img, checkpoint="jdraw/checkpoints/paper", split=tmp_path).strokes
+    (kept,) = api.plan(img, checkpoint="jdraw/checkpoints/paper", split=False).strokes
+    assert len(kept) == 1 and len(cut) == 2

@@ -5,7 +5,8 @@ import pytest
 from flax import nnx
 
 from jdraw import geometry
-from jdraw.planner import splits
+from jdraw.planner import corners as corner_geometry
+from jdraw.planner import joins, splits
 from jdraw.plans import Plan
 from jdraw.train import splitter as splitter_train
 
@@ -33,53 +34,51 @@ def _splitter(split_bias: float, join_bias: float) -> splits.Splitter:
 
 def test_corners_finds_a_right_angle_and_no_corner_on_lines_and_arcs():
     ell = _ell()
-    (k,) = splits.corners(ell)
+    (k,) = corner_geometry.corners(ell)
     assert tuple(ell[k]) == (20, 60)
-    assert len(splits.corners(_line(10, 10, 90, 40))) == 0
+    assert len(corner_geometry.corners(_line(10, 10, 90, 40))) == 0
     t = np.linspace(0, np.pi / 2, 60)  # a quarter circle of radius 40: turns gently
     arc = np.stack([50 + 40 * np.cos(t), 50 + 40 * np.sin(t)], 1)
-    assert len(splits.corners(arc)) == 0
+    assert len(corner_geometry.corners(arc)) == 0
     # Within MIN_ARM pixels of an end a hook is not a corner.
     hook = np.concatenate([_line(20, 20, 20, 60), _line(20, 60, 22, 60)[1:]])
-    assert len(splits.corners(hook)) == 0
+    assert len(corner_geometry.corners(hook)) == 0
 
 
 def test_corner_labels_split_where_two_reference_strokes_meet_only():
     ell = _ell()
-    ks = splits.corners(ell)
+    ks = corner_geometry.corners(ell)
     two = [_line(20, 20, 20, 60), _line(20, 60, 70, 60)]  # like 口's side and bottom
     one = [ell]  # one stroke that turns, like 山's second
-    assert splits.corner_labels(ell, ks, two).tolist() == [True]
-    assert splits.corner_labels(ell, ks, one).tolist() == [False]
+    assert corner_geometry.corner_labels(ell, ks, two).tolist() == [True]
+    assert corner_geometry.corner_labels(ell, ks, one).tolist() == [False]
 
 
 def test_split_and_join_keep_every_pixel_and_join_reverses_as_needed():
     ell = _ell()
-    parts = splits.split_at(ell, splits.corners(ell))
+    parts = corner_geometry.split_at(ell, corner_geometry.corners(ell))
     assert len(parts) == 2 and tuple(parts[0][-1]) == tuple(parts[1][0]) == (20, 60)
     np.testing.assert_array_equal(geometry.render_strokes(parts), geometry.render_strokes([ell]))
     a, b, c = _line(10, 50, 30, 50), _line(52, 50, 31, 50), _line(53, 50, 80, 50)
-    (one,) = splits.join_pairs([a, b, c], [(0, True, 1, True), (1, False, 2, False)])
+    (one,) = joins.join_pairs([a, b, c], [(0, True, 1, True), (1, False, 2, False)])
     assert tuple(one[0]) == (10, 50) and tuple(one[-1]) == (80, 50)
     assert np.abs(np.diff(one, axis=0)).max() <= 2
     np.testing.assert_array_equal(
         geometry.render_strokes([one]), geometry.render_strokes([a, b, c])
     )
     # A pair that would close a ring of strokes, or reuse an end, is skipped.
-    ring = splits.join_pairs(
-        [a, b], [(0, True, 1, True), (0, False, 1, False), (0, True, 1, False)]
-    )
+    ring = joins.join_pairs([a, b], [(0, True, 1, True), (0, False, 1, False), (0, True, 1, False)])
     assert len(ring) == 1
 
 
 def test_end_pairs_need_near_ends_on_ink():
     a, b = _line(10, 50, 30, 50), _line(33, 50, 60, 50)
-    assert splits.end_pairs([a, b]) == [(0, True, 1, False)]
-    assert splits.end_pairs([a, _line(34, 50, 60, 50)]) == []  # 4 px apart
+    assert joins.end_pairs([a, b]) == [(0, True, 1, False)]
+    assert joins.end_pairs([a, _line(34, 50, 60, 50)]) == []  # 4 px apart
     ink = geometry.render_strokes([a, b])
-    assert splits.end_pairs([a, b], ink) == []  # the gap between them is not ink
+    assert joins.end_pairs([a, b], ink) == []  # the gap between them is not ink
     ink[50, 31:33] = True
-    assert splits.end_pairs([a, b], ink) == [(0, True, 1, False)]
+    assert joins.end_pairs([a, b], ink) == [(0, True, 1, False)]
     _, x = splits.all_pairs([a, b])
     assert x.shape == (1, splits.JOIN_FEATURES)
     _, x = splits.all_corners([_ell(), a])
@@ -111,7 +110,7 @@ def test_splitter_round_trips_through_a_bundle_folder(tmp_path, patches):
     back = splits.load(tmp_path)
     assert back.patches == patches
     x = splits.all_corners([_ell()])[1]
-    x = x if patches else x[:, : splits.GEOMETRY_FEATURES]
+    x = x if patches else x[:, : corner_geometry.GEOMETRY_FEATURES]
     np.testing.assert_allclose(np.asarray(back.split_net(x)), np.asarray(sp.split_net(x)))
     assert splits.load(tmp_path / "none") is None
     meta = json.loads((tmp_path / "splitter.json").read_text())
@@ -137,7 +136,7 @@ def test_patches_show_the_ink_as_drawn_and_the_strokes_around_a_corner():
     assert splits.patch(edge, (0, 0)).sum() == (splits.PATCH + 1) ** 2  # off the canvas: no ink
     _, thin = splits.all_corners([ell])
     _, thick = splits.all_corners([ell], img)
-    g = splits.GEOMETRY_FEATURES
+    g = corner_geometry.GEOMETRY_FEATURES
     np.testing.assert_array_equal(thin[:, :g], thick[:, :g])
     assert not np.array_equal(thin[:, g:], thick[:, g:])  # the drawn ink is seen
 

@@ -12,12 +12,21 @@ round to be joined inks the same pixels (:func:`jdraw.planner.ranker.reverse`).
 
 Whether ``jdraw.plan`` joins is a setting of the checkpoint (its bundle's
 ``planner.join``), so the paper's model plans as it always has.
+
+Also here: :func:`absorb_crumbs` (a stroke of a few pixels drawn as part of
+the stroke it touches), and the candidates of the learned joiner of
+:mod:`jdraw.planner.splits`: pairs of stroke ends close together on ink
+(:func:`end_pairs`), their features (:func:`join_features`), their label
+from the reference strokes (:func:`end_owner`) and the strokes with chosen
+pairs joined (:func:`join_pairs`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from jdraw.planner.corners import SPAN as CORNER_SPAN
+from jdraw.planner.corners import _arclength, _unit, corners
 from jdraw.planner.ranker import reverse
 
 GAP = 3  # pixels (Chebyshev) between the ends joined
@@ -174,3 +183,151 @@ def absorb_crumbs(strokes, crumb: int = CRUMB) -> list:
         del S[k], size[k]
         k = 0  # a host may now touch another crumb
     return S
+
+
+# ----------------------------------------------------------------------------
+# Pairs of stroke ends: the learned joiner's candidates (jdraw.planner.splits).
+
+JOIN_GEOMETRY = 21  # of a pair of ends (join_features)
+
+
+def _end(p: np.ndarray, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The point of one end of a stroke, its outward heading and its turn there."""
+    q = p if at_end else p[::-1]  # q runs towards the end
+    s = _arclength(q)
+    out = []
+    for span in (CORNER_SPAN, 2 * CORNER_SPAN):
+        k = max(int(np.searchsorted(s, s[-1] - span, side="right")) - 1, 0)
+        out.append(_unit(q[-1] - q[k]))
+    return q[-1], out[0], out[1]
+
+
+def end_pairs(strokes, ink=None, gap: int = GAP) -> list[tuple[int, bool, int, bool]]:
+    """Pairs of ends of different strokes at most ``gap`` pixels apart, joined on ink."""
+    ends = [
+        (i, e, (p[-1] if e else p[0]))
+        for i, p in enumerate(np.asarray(x, np.float64).reshape(-1, 2) for x in strokes)
+        if len(p) >= 2
+        for e in (False, True)
+    ]
+    out = []
+    for a in range(len(ends)):
+        for b in range(a + 1, len(ends)):
+            (i, ie, pa), (j, je, pb) = ends[a], ends[b]
+            if i == j or np.abs(pa - pb).max() > gap:
+                continue
+            between = np.concatenate([pa[None], _link(pa, pb), pb[None]])
+            if ink is not None and not _on_ink(between, ink):
+                continue
+            out.append((i, ie, j, je))
+    return out
+
+
+def join_features(strokes, pair, box=None) -> np.ndarray:
+    """``float32 [JOIN_GEOMETRY]`` of joining two stroke ends (:func:`end_pairs`).
+
+    How straight the line runs on through the two ends (near and further
+    back), their headings, where they are, the gap, both strokes' lengths,
+    whether each end is where its stroke began, and how crowded the place is
+    (other ends and other lines near it).
+    """
+    S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
+    if box is None:
+        allp = np.concatenate(S)
+        box = np.concatenate([allp.min(0), allp.max(0)])
+    size = np.maximum(box[2:] - box[:2], 1.0)
+    i, ie, j, je = pair
+    pa, ha, fa = _end(S[i], ie)
+    pb, hb, fb = _end(S[j], je)
+    c = (pa + pb) / 2
+    la, lb = _arclength(S[i])[-1], _arclength(S[j])[-1]
+    ends, lines = 0, 100.0
+    for k, q in enumerate(S):
+        for e in (q[0], q[-1]):
+            if k not in (i, j) and np.abs(e - c).max() <= 2 * GAP:
+                ends += 1
+        if k not in (i, j):
+            lines = min(lines, float(np.abs(q - c).max(-1).min()))
+    f = [
+        float(ha @ hb),
+        float(fa @ fb),
+        float(ha[0] * hb[1] - ha[1] * hb[0]),
+        *ha,
+        *hb,
+        *((c - box[:2]) / size),
+        float(np.abs(pa - pb).max()) / GAP,
+        min(la, lb) / 100,
+        max(la, lb) / 100,
+        float(not ie),
+        float(not je),
+        ends / 4,
+        min(lines, 10) / 10,
+        len(S) / 20,
+        float(np.linalg.norm(S[i][0] - S[i][-1])) / 100,
+        float(np.linalg.norm(S[j][0] - S[j][-1])) / 100,
+        float(len(corners(S[i])) + len(corners(S[j]))) / 4,
+        float(abs(ha @ fa) + abs(hb @ fb)) / 2,
+    ]
+    return np.asarray(f, np.float32)
+
+
+def end_owner(points, at_end: bool, refs, reach: float = 8.0, skip: float = 1.0) -> int:
+    """The reference stroke nearest most of the line within ``reach`` pixels of an end."""
+    p = np.asarray(points, np.float64).reshape(-1, 2)
+    q = p[::-1] if at_end else p
+    s = _arclength(q)
+    sel = (s >= skip) & (s <= reach)
+    if not sel.any():
+        sel = s <= reach
+    d = np.stack(
+        [
+            np.linalg.norm(q[sel][:, None] - np.asarray(r, np.float64)[None], axis=-1).min(1)
+            for r in refs
+        ],
+        1,
+    )
+    return int(np.bincount(d.argmin(1)).argmax())
+
+
+def join_pairs(strokes, pairs) -> list[np.ndarray]:
+    """Strokes with the chosen end pairs joined, each end used once, no loops.
+
+    ``pairs`` are taken in the order given (best first); one that would
+    reuse an end or close a ring of strokes is skipped. A chain is drawn from
+    its first stroke's free end; a stroke turned round inks the same pixels
+    (:func:`jdraw.planner.ranker.reverse`).
+    """
+    S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
+    parent = list(range(len(S)))
+
+    def find(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    link: dict[tuple[int, bool], tuple[int, bool]] = {}
+    for i, ie, j, je in pairs:
+        if (i, ie) in link or (j, je) in link or find(i) == find(j):
+            continue
+        parent[find(i)] = find(j)
+        link[(i, ie)] = (j, je)
+        link[(j, je)] = (i, ie)
+    out, seen = [], set()
+    # Every chain has two free ends (no rings); walk each from the free end met first.
+    for k, free in ((k, e) for k in range(len(S)) for e in (False, True)):
+        if k in seen or (k, free) in link:
+            continue
+        parts, cur, enter = [], k, free
+        while True:
+            seen.add(cur)
+            p = S[cur] if not enter else reverse(S[cur])  # from the end entered
+            if parts:
+                parts.append(_link(parts[-1][-1], p[0]))
+            parts.append(p)
+            nxt = link.get((cur, not enter))  # leave by the other end
+            if nxt is None:
+                break
+            cur, enter = nxt
+        out.append(np.concatenate(parts))
+    return out

@@ -1,18 +1,21 @@
-"""Splitting a drawn stroke where one person's stroke ends and the next begins.
+"""Cutting a drawn stroke where one person's stroke ends, joining two that are one.
 
 Lines redrawn from a thick pen lose the small overshoot where two strokes
 meet at a corner (the left side and the bottom of 口), so the local model
 runs on round the corner and draws two strokes of a person as one, often a
-whole box as one loop. A turn of the pen inside one stroke (the top-right
-corner of 口, 乙) looks the same up close; which one a corner is depends on
-the character around it. This stage learns it from KanjiVG: every sharp
-corner of a drawn stroke (:func:`corners`) is described by its geometry and
-its neighbourhood (:func:`corner_features`), and a small MLP
-(:class:`Splitter`) gives the log-odds that the stroke should end there and
-a new one begin. It is trained on the tracer's own strokes of training
-characters drawn in several ways (:mod:`jdraw.train.splitter`), each corner
-labelled by whether the reference strokes nearest the line on its two sides
-differ (:func:`corner_labels`).
+whole box as one loop; at crossings it still leaves one line in pieces. A
+turn of the pen inside one stroke (the top-right corner of 口, 乙) looks the
+same up close; which one a corner is depends on the character around it.
+This stage learns it from KanjiVG: every sharp corner of a drawn stroke
+(:func:`jdraw.planner.corners.corners`) and every pair of stroke ends close
+together on ink (:func:`jdraw.planner.joins.end_pairs`) is described by its
+geometry and neighbourhood (:func:`all_corners`, :func:`all_pairs`), and two
+small MLPs (:class:`Splitter`) give the log-odds that the stroke should end
+there and that the two ends are one line. They are trained on the tracer's
+own strokes of training characters drawn in several ways
+(:mod:`jdraw.train.splitter`), each corner labelled by whether the reference
+strokes nearest the line on its two sides differ
+(:func:`jdraw.planner.corners.corner_labels`).
 
 A split keeps every pixel: the two parts share the corner point, so the plan
 inks exactly what it inked before; a join adds only the pixels between two
@@ -29,55 +32,14 @@ import jax
 import numpy as np
 from flax import nnx
 
+from jdraw.planner.corners import GEOMETRY_FEATURES, corner_features, corners, split_at
+from jdraw.planner.joins import JOIN_GEOMETRY, end_pairs, join_features, join_pairs
 from jdraw.planner.ranker import MLP
 
-SPAN = 5.0  # pixels along the line on each side of a point that give its turn
-MIN_TURN = 50.0  # degrees: a sharper turn is a corner candidate
-MIN_ARM = 4.0  # pixels of line each side of a corner, at least
 PATCH = 5  # pixels each side of a corner or a join the nets see of the ink and strokes
 _SIDE = 2 * PATCH + 1
-GEOMETRY_FEATURES = 23  # of a corner (corner_features)
 CORNER_FEATURES = GEOMETRY_FEATURES + 3 * _SIDE * _SIDE  # with the patches (all_corners)
-
-
-def _arclength(p: np.ndarray) -> np.ndarray:
-    return np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(p, axis=0).T))])
-
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
-
-
-def _headings(p: np.ndarray, s: np.ndarray, span: float) -> tuple[np.ndarray, np.ndarray]:
-    """Unit headings into and out of every point, over ``span`` pixels of line."""
-    back = np.searchsorted(s, s - span, side="right") - 1
-    fwd = np.searchsorted(s, s + span, side="left")
-    back = np.clip(back, 0, len(p) - 1)
-    fwd = np.clip(fwd, 0, len(p) - 1)
-    return _unit(p - p[back]), _unit(p[fwd] - p)
-
-
-def corners(points) -> np.ndarray:
-    """Indices of the sharp corners of one stroke (``[n, 2]`` points, drawing order).
-
-    A corner is a point where the line turns at least :data:`MIN_TURN`
-    degrees over :data:`SPAN` pixels each side, the sharpest within ``SPAN``,
-    with at least :data:`MIN_ARM` pixels of line before and after it.
-    """
-    p = np.asarray(points, np.float64).reshape(-1, 2)
-    if len(p) < 3:
-        return np.zeros(0, np.int64)
-    s = _arclength(p)
-    hin, hout = _headings(p, s, SPAN)
-    turn = np.degrees(np.arccos(np.clip(np.sum(hin * hout, -1), -1, 1)))
-    ok = (turn >= MIN_TURN) & (s >= MIN_ARM) & (s <= s[-1] - MIN_ARM)
-    out: list[int] = []
-    for k in np.argsort(-turn, kind="stable"):
-        if turn[k] < MIN_TURN:
-            break
-        if ok[k] and all(abs(s[k] - s[j]) > SPAN for j in out):
-            out.append(int(k))
-    return np.asarray(sorted(out), np.int64)
+JOIN_FEATURES = JOIN_GEOMETRY + 3 * _SIDE * _SIDE
 
 
 def patch(img: np.ndarray, c) -> np.ndarray:
@@ -85,244 +47,6 @@ def patch(img: np.ndarray, c) -> np.ndarray:
     x, y = (int(v) for v in np.floor(np.asarray(c, np.float64) + 0.5))
     p = np.pad(np.asarray(img, np.float32), PATCH)
     return p[y : y + _SIDE, x : x + _SIDE].reshape(-1)
-
-
-def corner_features(strokes, b: int, k: int, box=None, cs=None) -> np.ndarray:
-    """``float32 [GEOMETRY_FEATURES]`` of corner ``k`` (a point index) of stroke ``b``.
-
-    Its turn (signed, sharp over 2 pixels and wide over :data:`SPAN`), the
-    headings in and out, where it is in the character's box, how much line
-    runs before and after it and to the stroke's other corners, whether the
-    stroke closes on itself, and how near other strokes and their ends come.
-    """
-    p = np.asarray(strokes[b], np.float64).reshape(-1, 2)
-    if box is None:
-        allp = np.concatenate([np.asarray(x, np.float64).reshape(-1, 2) for x in strokes])
-        box = np.concatenate([allp.min(0), allp.max(0)])
-    size = np.maximum(box[2:] - box[:2], 1.0)
-    s = _arclength(p)
-    c = p[k]
-    feats = []
-    for span in (2.0, SPAN, 2 * SPAN):
-        hin, hout = _headings(p, s, span)
-        a, o = hin[k], hout[k]
-        feats += [float(a @ o), float(a[0] * o[1] - a[1] * o[0])]
-    hin, hout = _headings(p, s, SPAN)
-    feats += [*hin[k], *hout[k]]
-    feats += [*((c - box[:2]) / size)]
-    total = max(s[-1], 1e-6)
-    feats += [s[k] / 100, (total - s[k]) / 100, s[k] / total]
-    cs = corners(p) if cs is None else cs  # the stroke's corners
-    before = s[k] - max([s[j] for j in cs if j < k], default=0.0)
-    after = min([s[j] for j in cs if j > k], default=total) - s[k]
-    feats += [before / 100, after / 100, len(cs) / 4]
-    feats += [np.linalg.norm(p[0] - p[-1]) / 100]
-    others = [np.asarray(x, np.float64).reshape(-1, 2) for i, x in enumerate(strokes) if i != b]
-    if others:
-        near = min(float(np.abs(o - c).max(-1).min()) for o in others)
-        ends = np.concatenate([o[[0, -1]] for o in others])
-        end = float(np.abs(ends - c).max(-1).min())
-    else:
-        near = end = 100.0
-    # The stroke's own line passing close by, away from the corner (a loop closing there).
-    far = np.abs(s - s[k]) > 3 * SPAN
-    own = float(np.abs(p[far] - c).max(-1).min()) if far.any() else 100.0
-    feats += [min(near, 20) / 20, min(end, 20) / 20, min(own, 20) / 20, len(strokes) / 20]
-    return np.asarray(feats, np.float32)
-
-
-def corner_labels(points, ks, refs, reach: float = 8.0, skip: float = 2.0) -> np.ndarray:
-    """Whether each corner ``ks`` of a drawn stroke is where two reference strokes meet.
-
-    Each point of the stroke takes the reference stroke nearest it; a corner
-    is a split when the most common reference over ``skip``..``reach`` pixels
-    of line before it differs from the one after it.
-
-    Args:
-      points: ``[n, 2]`` the drawn stroke.
-      ks: its corners' point indices.
-      refs: the reference strokes, ``[m_i, 2]`` points each.
-    """
-    p = np.asarray(points, np.float64).reshape(-1, 2)
-    s = _arclength(p)
-    d = np.stack(
-        [
-            np.linalg.norm(p[:, None] - np.asarray(r, np.float64)[None], axis=-1).min(1)
-            for r in refs
-        ],
-        1,
-    )
-    owner = d.argmin(1)
-
-    def mode(sel):
-        v = owner[sel]
-        return np.bincount(v).argmax() if len(v) else -1
-
-    out = []
-    for k in ks:
-        before = mode((s < s[k] - skip) & (s >= s[k] - reach))
-        after = mode((s > s[k] + skip) & (s <= s[k] + reach))
-        out.append(before != after and before >= 0 and after >= 0)
-    return np.asarray(out, bool)
-
-
-def split_at(points, ks) -> list[np.ndarray]:
-    """One stroke cut at point indices ``ks``; neighbouring parts share the cut point."""
-    p = np.asarray(points, np.float64).reshape(-1, 2)
-    cuts = [0, *sorted(int(k) for k in ks), len(p) - 1]
-    return [p[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
-
-
-JOIN_GEOMETRY = 21  # of a pair of ends (join_features)
-JOIN_FEATURES = JOIN_GEOMETRY + 3 * _SIDE * _SIDE
-GAP = 3  # pixels (Chebyshev) between two stroke ends the join net looks at
-
-
-def _end(p: np.ndarray, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The point of one end of a stroke, its outward heading and its turn there."""
-    q = p if at_end else p[::-1]  # q runs towards the end
-    s = _arclength(q)
-    out = []
-    for span in (SPAN, 2 * SPAN):
-        k = max(int(np.searchsorted(s, s[-1] - span, side="right")) - 1, 0)
-        out.append(_unit(q[-1] - q[k]))
-    return q[-1], out[0], out[1]
-
-
-def end_pairs(strokes, ink=None, gap: int = GAP) -> list[tuple[int, bool, int, bool]]:
-    """Pairs of ends of different strokes at most ``gap`` pixels apart, joined on ink."""
-    from jdraw.planner.joins import _link, _on_ink
-
-    ends = [
-        (i, e, (p[-1] if e else p[0]))
-        for i, p in enumerate(np.asarray(x, np.float64).reshape(-1, 2) for x in strokes)
-        if len(p) >= 2
-        for e in (False, True)
-    ]
-    out = []
-    for a in range(len(ends)):
-        for b in range(a + 1, len(ends)):
-            (i, ie, pa), (j, je, pb) = ends[a], ends[b]
-            if i == j or np.abs(pa - pb).max() > gap:
-                continue
-            between = np.concatenate([pa[None], _link(pa, pb), pb[None]])
-            if ink is not None and not _on_ink(between, ink):
-                continue
-            out.append((i, ie, j, je))
-    return out
-
-
-def join_features(strokes, pair, box=None) -> np.ndarray:
-    """``float32 [JOIN_GEOMETRY]`` of joining two stroke ends (:func:`end_pairs`).
-
-    How straight the line runs on through the two ends (near and further
-    back), their headings, where they are, the gap, both strokes' lengths,
-    whether each end is where its stroke began, and how crowded the place is
-    (other ends and other lines near it).
-    """
-    S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
-    if box is None:
-        allp = np.concatenate(S)
-        box = np.concatenate([allp.min(0), allp.max(0)])
-    size = np.maximum(box[2:] - box[:2], 1.0)
-    i, ie, j, je = pair
-    pa, ha, fa = _end(S[i], ie)
-    pb, hb, fb = _end(S[j], je)
-    c = (pa + pb) / 2
-    la, lb = _arclength(S[i])[-1], _arclength(S[j])[-1]
-    ends, lines = 0, 100.0
-    for k, q in enumerate(S):
-        for e in (q[0], q[-1]):
-            if k not in (i, j) and np.abs(e - c).max() <= 2 * GAP:
-                ends += 1
-        if k not in (i, j):
-            lines = min(lines, float(np.abs(q - c).max(-1).min()))
-    f = [
-        float(ha @ hb),
-        float(fa @ fb),
-        float(ha[0] * hb[1] - ha[1] * hb[0]),
-        *ha,
-        *hb,
-        *((c - box[:2]) / size),
-        float(np.abs(pa - pb).max()) / GAP,
-        min(la, lb) / 100,
-        max(la, lb) / 100,
-        float(not ie),
-        float(not je),
-        ends / 4,
-        min(lines, 10) / 10,
-        len(S) / 20,
-        float(np.linalg.norm(S[i][0] - S[i][-1])) / 100,
-        float(np.linalg.norm(S[j][0] - S[j][-1])) / 100,
-        float(len(corners(S[i])) + len(corners(S[j]))) / 4,
-        float(abs(ha @ fa) + abs(hb @ fb)) / 2,
-    ]
-    return np.asarray(f, np.float32)
-
-
-def end_owner(points, at_end: bool, refs, reach: float = 8.0, skip: float = 1.0) -> int:
-    """The reference stroke nearest most of the line within ``reach`` pixels of an end."""
-    p = np.asarray(points, np.float64).reshape(-1, 2)
-    q = p[::-1] if at_end else p
-    s = _arclength(q)
-    sel = (s >= skip) & (s <= reach)
-    if not sel.any():
-        sel = s <= reach
-    d = np.stack(
-        [
-            np.linalg.norm(q[sel][:, None] - np.asarray(r, np.float64)[None], axis=-1).min(1)
-            for r in refs
-        ],
-        1,
-    )
-    return int(np.bincount(d.argmin(1)).argmax())
-
-
-def join_pairs(strokes, pairs) -> list[np.ndarray]:
-    """Strokes with the chosen end pairs joined, each end used once, no loops.
-
-    ``pairs`` are taken in the order given (best first); one that would
-    reuse an end or close a ring of strokes is skipped. A chain is drawn from
-    its first stroke's free end; a stroke turned round inks the same pixels
-    (:func:`jdraw.planner.ranker.reverse`).
-    """
-    from jdraw.planner.joins import _link
-    from jdraw.planner.ranker import reverse
-
-    S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
-    parent = list(range(len(S)))
-
-    def find(a):
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
-    link: dict[tuple[int, bool], tuple[int, bool]] = {}
-    for i, ie, j, je in pairs:
-        if (i, ie) in link or (j, je) in link or find(i) == find(j):
-            continue
-        parent[find(i)] = find(j)
-        link[(i, ie)] = (j, je)
-        link[(j, je)] = (i, ie)
-    out, seen = [], set()
-    # Every chain has two free ends (no rings); walk each from the free end met first.
-    for k, free in ((k, e) for k in range(len(S)) for e in (False, True)):
-        if k in seen or (k, free) in link:
-            continue
-        parts, cur, enter = [], k, free
-        while True:
-            seen.add(cur)
-            p = S[cur] if not enter else reverse(S[cur])  # from the end entered
-            if parts:
-                parts.append(_link(parts[-1][-1], p[0]))
-            parts.append(p)
-            nxt = link.get((cur, not enter))  # leave by the other end
-            if nxt is None:
-                break
-            cur, enter = nxt
-        out.append(np.concatenate(parts))
-    return out
 
 
 class Splitter(nnx.Module):

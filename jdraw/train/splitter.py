@@ -4,7 +4,7 @@ The tracer (a planner bundle) plans augmented training characters drawn in
 several ways, as for the ranker (:func:`jdraw.train.ranker.traced_chunk`).
 Every sharp corner of a drawn stroke becomes a split example, labelled by
 whether the reference strokes nearest the line on its two sides differ
-(:func:`jdraw.planner.splits.corner_labels`). The strokes are then cut at the
+(:func:`jdraw.planner.corners.corner_labels`). The strokes are then cut at the
 true splits, and every pair of stroke ends close together on ink becomes a
 join example, labelled by whether the line near both ends is one reference
 stroke. Examples are saved in the workdir a chunk at a time, so an
@@ -24,7 +24,7 @@ import optax
 from flax import nnx
 
 from jdraw.data import kanji
-from jdraw.planner import splits
+from jdraw.planner import corners, joins, splits
 from jdraw.train.ranker import read_chunks, traced_chunk, write_chunk
 
 
@@ -42,7 +42,7 @@ def examples(traced, refs, ink, drawn=None) -> tuple[np.ndarray, ...]:
     for b, k in keys:
         by_stroke.setdefault(b, []).append(k)
     labels = {
-        b: splits.corner_labels(strokes[b], np.asarray(ks), refs) for b, ks in by_stroke.items()
+        b: corners.corner_labels(strokes[b], np.asarray(ks), refs) for b, ks in by_stroke.items()
     }
     seen: dict[int, int] = {}
     for b, _ in keys:
@@ -51,10 +51,10 @@ def examples(traced, refs, ink, drawn=None) -> tuple[np.ndarray, ...]:
     xs = feats
     for b, p in enumerate(strokes):
         ks = np.asarray(by_stroke.get(b, []), np.int64)
-        cut += splits.split_at(p, ks[labels[b]]) if len(ks) and labels[b].any() else [p]
+        cut += corners.split_at(p, ks[labels[b]]) if len(ks) and labels[b].any() else [p]
     pairs, xj = splits.all_pairs(cut, ink, drawn)
     yj = [
-        splits.end_owner(cut[i], ie, refs) == splits.end_owner(cut[j], je, refs)
+        joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
     ]
     return (
@@ -82,7 +82,7 @@ def fit(
     """
     xs, ys, xj, yj = data
     if not patches:
-        xs, xj = xs[:, : splits.GEOMETRY_FEATURES], xj[:, : splits.JOIN_GEOMETRY]
+        xs, xj = xs[:, : corners.GEOMETRY_FEATURES], xj[:, : joins.JOIN_GEOMETRY]
     model = splits.Splitter(hidden, patches, rngs=nnx.Rngs(seed))
     tx = optax.adam(lr)
     graphdef, params = nnx.split(model, nnx.Param)

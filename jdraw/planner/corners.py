@@ -26,6 +26,24 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-9)
 
 
+def _box(strokes) -> np.ndarray:
+    """``[4]`` the box (x0, y0, x1, y1) of a character's strokes."""
+    allp = np.concatenate([np.asarray(x, np.float64).reshape(-1, 2) for x in strokes])
+    return np.concatenate([allp.min(0), allp.max(0)])
+
+
+def _owners(points: np.ndarray, refs) -> np.ndarray:
+    """``int [n]``: for each point, the index of the reference stroke nearest it."""
+    d = np.stack(
+        [
+            np.linalg.norm(points[:, None] - np.asarray(r, np.float64)[None], axis=-1).min(1)
+            for r in refs
+        ],
+        1,
+    )
+    return d.argmin(1)
+
+
 def _headings(p: np.ndarray, s: np.ndarray, span: float) -> tuple[np.ndarray, np.ndarray]:
     """Unit headings into and out of every point, over ``span`` pixels of line."""
     back = np.searchsorted(s, s - span, side="right") - 1
@@ -67,9 +85,7 @@ def corner_features(strokes, b: int, k: int, box=None, cs=None) -> np.ndarray:
     stroke closes on itself, and how near other strokes and their ends come.
     """
     p = np.asarray(strokes[b], np.float64).reshape(-1, 2)
-    if box is None:
-        allp = np.concatenate([np.asarray(x, np.float64).reshape(-1, 2) for x in strokes])
-        box = np.concatenate([allp.min(0), allp.max(0)])
+    box = _box(strokes) if box is None else box
     size = np.maximum(box[2:] - box[:2], 1.0)
     s = _arclength(p)
     c = p[k]
@@ -116,14 +132,7 @@ def corner_labels(points, ks, refs, reach: float = 8.0, skip: float = 2.0) -> np
     """
     p = np.asarray(points, np.float64).reshape(-1, 2)
     s = _arclength(p)
-    d = np.stack(
-        [
-            np.linalg.norm(p[:, None] - np.asarray(r, np.float64)[None], axis=-1).min(1)
-            for r in refs
-        ],
-        1,
-    )
-    owner = d.argmin(1)
+    owner = _owners(p, refs)
 
     def mode(sel):
         v = owner[sel]

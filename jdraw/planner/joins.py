@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from jdraw.planner.corners import SPAN as CORNER_SPAN
-from jdraw.planner.corners import _arclength, _unit, corners
+from jdraw.planner.corners import _arclength, _box, _owners, _unit, corners
 from jdraw.planner.ranker import reverse
 
 GAP = 3  # pixels (Chebyshev) between the ends joined
@@ -232,9 +232,7 @@ def join_features(strokes, pair, box=None) -> np.ndarray:
     (other ends and other lines near it).
     """
     S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
-    if box is None:
-        allp = np.concatenate(S)
-        box = np.concatenate([allp.min(0), allp.max(0)])
+    box = _box(S) if box is None else box
     size = np.maximum(box[2:] - box[:2], 1.0)
     i, ie, j, je = pair
     pa, ha, fa = _end(S[i], ie)
@@ -279,14 +277,7 @@ def end_owner(points, at_end: bool, refs, reach: float = 8.0, skip: float = 1.0)
     sel = (s >= skip) & (s <= reach)
     if not sel.any():
         sel = s <= reach
-    d = np.stack(
-        [
-            np.linalg.norm(q[sel][:, None] - np.asarray(r, np.float64)[None], axis=-1).min(1)
-            for r in refs
-        ],
-        1,
-    )
-    return int(np.bincount(d.argmin(1)).argmax())
+    return int(np.bincount(_owners(q[sel], refs)).argmax())
 
 
 def join_pairs(strokes, pairs) -> list[np.ndarray]:

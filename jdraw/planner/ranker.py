@@ -85,7 +85,7 @@ def _pair_net(graphdef, st, x):
 CHUNK = 256  # rows per network call: one shape, compiled once, whatever the strokes
 
 
-def _chunked(fn, g, st, *xs) -> np.ndarray:
+def chunked(fn, g, st, *xs) -> np.ndarray:
     """``fn(g, st, *rows)`` over the rows of ``xs``, ``CHUNK`` rows a call."""
     n = len(xs[0])
     out = [
@@ -115,7 +115,7 @@ def order_many(ranker: Ranker, characters) -> list[tuple[list[int], list[bool]]]
     tks = [tokens(s) for s in characters]
     counts = [len(s) for s in characters]
     cat = lambda xs, width: np.concatenate(xs) if xs else np.zeros((0, width), np.float32)
-    h = _chunked(
+    h = chunked(
         _headings,
         g,
         st,
@@ -128,7 +128,7 @@ def order_many(ranker: Ranker, characters) -> list[tuple[list[int], list[bool]]]
     for tk, n in zip(tks, counts):
         i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
         pairs.append(pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()))
-    net = _chunked(_pair_net, g, st, cat(pairs, PAIR_FEATURES))
+    net = chunked(_pair_net, g, st, cat(pairs, PAIR_FEATURES))
     nets = np.split(net, np.cumsum([n * n for n in counts])[:-1])
     return [(_order(v.reshape(n, n)), [bool(x) for x in f]) for v, n, f in zip(nets, counts, flips)]
 

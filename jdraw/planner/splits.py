@@ -32,9 +32,10 @@ import jax
 import numpy as np
 from flax import nnx
 
-from jdraw.planner.corners import GEOMETRY_FEATURES, corner_features, corners, split_at
+from jdraw.planner.corners import GEOMETRY_FEATURES, _box, corner_features, corners, split_at
 from jdraw.planner.joins import JOIN_GEOMETRY, end_pairs, join_features, join_pairs
-from jdraw.planner.ranker import MLP
+from jdraw.planner.ranker import MLP, chunked
+from jdraw.planner.stroke_tokens import stroke_masks
 
 PATCH = 5  # pixels each side of a corner or a join the nets see of the ink and strokes
 _SIDE = 2 * PATCH + 1
@@ -71,24 +72,9 @@ def _join_logits(graphdef, st, x):
 
 
 def _score(fn, splitter, x: np.ndarray) -> np.ndarray:
-    if not len(x):
-        return np.zeros(0)
+    """One logit per row of ``x``, in calls of one shape (:func:`jdraw.planner.ranker.chunked`)."""
     g, st = nnx.split(splitter)
-    rows = 1 << max(6, int(np.ceil(np.log2(len(x)))))  # few shapes, few compilations
-    pad = np.zeros((rows, x.shape[1]), np.float32)
-    pad[: len(x)] = x
-    return np.asarray(fn(g, st, pad))[: len(x)]
-
-
-def _box(strokes) -> np.ndarray:
-    allp = np.concatenate([np.asarray(x, np.float64).reshape(-1, 2) for x in strokes])
-    return np.concatenate([allp.min(0), allp.max(0)])
-
-
-def _masks(strokes) -> np.ndarray:
-    from jdraw.planner.stroke_tokens import stroke_masks
-
-    return stroke_masks(strokes)
+    return chunked(fn, g, st, x) if len(x) else np.zeros(0)
 
 
 def all_corners(
@@ -108,7 +94,7 @@ def all_corners(
     if any(len(cs) for _, _, cs in found):
         box = _box(strokes)
         if patches:
-            masks = _masks(strokes)
+            masks = stroke_masks(strokes)
             ink = masks.any(0) if drawn is None else np.asarray(drawn, bool)
         for b, p, cs in found:
             if patches and len(cs):
@@ -135,7 +121,7 @@ def all_pairs(strokes, ink=None, drawn=None, patches: bool = True) -> tuple[list
     if pairs:
         box = _box(strokes)
         if patches:
-            masks = _masks(strokes)
+            masks = stroke_masks(strokes)
             seen = masks.any(0) if drawn is None else np.asarray(drawn, bool)
         for q in pairs:
             f = [join_features(strokes, q, box)]
@@ -200,8 +186,7 @@ def edit_plan(plan, splitter: Splitter, targets=None, max_rows: int | None = Non
     Strokes are cut (:func:`split_many`), then joined (:func:`join_many`;
     ``targets``, the ink planned, keeps joins on ink; ``drawn``, the images as
     given before they were canonicalised, shows the nets the pen's outline),
-    then crumbs of a few
-    pixels are drawn as part of the stroke they touch
+    then crumbs of a few pixels are drawn as part of the stroke they touch
     (:func:`jdraw.planner.joins.absorb_crumbs`). An image whose edited strokes
     would need more than ``max_rows`` action rows keeps its strokes.
     """

@@ -35,30 +35,25 @@ def examples(traced, refs, ink, drawn=None) -> tuple[np.ndarray, ...]:
       traced: the tracer's strokes; refs: the reference strokes; ink: the ink
         planned (canonical); drawn: the ink as drawn before it was canonicalised.
     """
-    xs, ys, cut = [], [], []
     strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in traced if len(s)]
-    keys, feats = splits.all_corners(strokes, drawn)
+    keys, xs = splits.all_corners(strokes, drawn)  # grouped by stroke, in stroke order
     by_stroke: dict[int, list[int]] = {}
     for b, k in keys:
         by_stroke.setdefault(b, []).append(k)
-    labels = {
-        b: corners.corner_labels(strokes[b], np.asarray(ks), refs) for b, ks in by_stroke.items()
-    }
-    seen: dict[int, int] = {}
-    for b, _ in keys:
-        ys.append(labels[b][seen.get(b, 0)])
-        seen[b] = seen.get(b, 0) + 1
-    xs = feats
+    cut, ys = [], []
     for b, p in enumerate(strokes):
         ks = np.asarray(by_stroke.get(b, []), np.int64)
-        cut += corners.split_at(p, ks[labels[b]]) if len(ks) and labels[b].any() else [p]
+        lab = corners.corner_labels(p, ks, refs) if len(ks) else np.zeros(0, bool)
+        ys.append(lab)
+        cut += corners.split_at(p, ks[lab]) if lab.any() else [p]
+    ys = np.concatenate(ys) if ys else np.zeros(0)
     pairs, xj = splits.all_pairs(cut, ink, drawn)
     yj = [
         joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
     ]
     return (
-        np.asarray(xs, np.float32).reshape(-1, splits.CORNER_FEATURES),
+        xs,
         np.asarray(ys, np.float32),
         xj,
         np.asarray(yj, np.float32),

@@ -45,7 +45,12 @@ def test_bundled_checkpoints_are_present_and_trained():
     sp = api.load_splitter(None)  # and cuts and joins strokes with its splitter
     assert sp is not None
     meta = json.loads((bundle.DEFAULT_BUNDLE / "splitter.json").read_text())["provenance"]
-    assert meta["config"]["name"] == "splitter_lean" and meta["corners"] >= 10_000
+    assert meta["config"]["name"] == "splitter_reach" and meta["corners"] >= 10_000
+    assert sp.reach == meta["config"]["reach"] > 0  # it joins ends through the ink
+    from jdraw.planner import splits
+
+    near = splits.load(bundle.DEFAULT_BUNDLE.parent / "splitter_near")  # the first splitter
+    assert near.reach == 0
 
 
 @pytest.mark.parametrize("seed", [0])

@@ -81,6 +81,23 @@ def test_end_pairs_need_near_ends_on_ink():
     assert joins.end_pairs([a, b], ink) == [(0, True, 1, False)]
     _, x = splits.all_pairs([a, b])
     assert x.shape == (1, splits.JOIN_FEATURES)
+
+
+def test_ends_either_side_of_a_crossing_join_through_the_ink():
+    """A line stopped short of a crossing and taken up past it joins over the crossing."""
+    a, b, c = _line(10, 50, 46, 50), _line(54, 50, 90, 50), _line(50, 20, 50, 80)
+    ink = geometry.render_strokes([a, b, c])
+    assert joins.end_pairs([a, b, c], ink) == []  # the pixels between are not ink
+    ink[50, 46:55] = True
+    assert joins.end_pairs([a, b, c]) == []  # 8 px apart: only through the ink
+    assert joins.end_pairs([a, b, c], ink) == [(0, True, 1, False)]
+    assert joins.end_pairs([a, b, c], ink, reach=7) == []
+    pairs, x = splits.all_pairs([a, b, c], ink, patches=False)
+    assert x[0, -2:].tolist() == [1.0, 1.0]  # far, 8 moves
+    one, cross = joins.join_pairs([a, b, c], pairs, ink)
+    assert tuple(one[0]) == (10, 50) and tuple(one[-1]) == (90, 50)
+    assert np.abs(np.diff(one, axis=0)).max() == 1  # along the ink, pixel by pixel
+    np.testing.assert_array_equal(geometry.render_strokes([one, cross]), ink)
     _, x = splits.all_corners([_ell(), a])
     assert x.shape == (1, splits.CORNER_FEATURES)
 
@@ -99,6 +116,39 @@ def test_edit_plan_follows_the_nets_and_inks_the_same_pixels():
         np.testing.assert_array_equal(
             geometry.render_strokes(p.strokes[0]), geometry.render_strokes([ell, far, a, b])
         )
+
+
+def test_drop_covered_keeps_the_ink_and_drops_only_strokes_drawn_over():
+    a = _line(10, 50, 90, 50)
+    piece, cross = _line(40, 50, 47, 50), _line(45, 20, 45, 80)
+    out = splits.drop_covered([a, piece, cross])
+    assert len(out) == 2 and out[0] is a and out[1] is cross
+    np.testing.assert_array_equal(
+        geometry.render_strokes(out), geometry.render_strokes([a, piece, cross])
+    )
+    twice = splits.drop_covered([a, a.copy()])  # one of two copies goes, not both
+    assert len(twice) == 1
+
+
+def test_a_splitter_that_joins_near_ends_only_still_loads(tmp_path):
+    """The first splitters (no reach, 21 join features) load and join as they did."""
+    old = splits.Splitter(hidden=8, patches=False, reach=0, rngs=nnx.Rngs(0))
+    splits.save(old, tmp_path)
+    back = splits.load(tmp_path)
+    assert back.reach == 0 and back.join_net.l1.kernel.shape[0] == splits.NEAR_GEOMETRY
+    a, b, c = _line(10, 50, 46, 50), _line(54, 50, 90, 50), _line(50, 20, 50, 80)
+    ink = geometry.render_strokes([a, b, c])
+    ink[50, 46:55] = True
+    assert splits.all_pairs([a, b, c], ink, patches=False, reach=0)[0] == []
+    pairs, x = splits.all_pairs([a, b, c], ink, patches=False, reach=back.reach)
+    assert pairs == [] and x.shape == (0, splits.NEAR_GEOMETRY)
+    near = [_line(10, 50, 30, 50), _line(32, 50, 60, 50)]
+    _, x = splits.all_pairs(near, patches=False, reach=0)
+    assert x.shape == (1, splits.NEAR_GEOMETRY)
+    new = splits.Splitter(hidden=8, patches=False, rngs=nnx.Rngs(0))
+    assert new.reach == joins.REACH and splits.all_pairs(
+        [a, b, c], ink, patches=False, reach=new.reach
+    )[1].shape == (1, joins.JOIN_GEOMETRY)
 
 
 @pytest.mark.parametrize("patches", [True, False])
@@ -182,3 +232,16 @@ def test_plan_takes_a_splitter_from_a_folder(tmp_path):
     (cut,) = api.plan(img, checkpoint="jdraw/checkpoints/paper", split=tmp_path).strokes
     (kept,) = api.plan(img, checkpoint="jdraw/checkpoints/paper", split=False).strokes
     assert len(kept) == 1 and len(cut) == 2
+
+
+def test_examples_of_other_features_are_refused_by_name(tmp_path):
+    from jdraw.train.ranker import write_chunk
+
+    refs = [_line(20, 20, 20, 60), _line(20, 60, 70, 60)]
+    ex = splitter_train.examples([_ell()], refs, geometry.render_strokes(refs))
+    good, old = tmp_path / "good.npz", tmp_path / "old.npz"
+    write_chunk(good, [ex])
+    assert splitter_train.load_examples([good])[2].shape[1] == splits.JOIN_FEATURES
+    write_chunk(old, [(ex[0], ex[1], ex[2][:, 2:], ex[3])])  # joins made before the bridge
+    with pytest.raises(ValueError, match="delete them"):
+        splitter_train.load_examples([old])

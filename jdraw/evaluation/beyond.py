@@ -5,7 +5,7 @@
 Reads the ``eval.py`` results ``beyond_{name}[_clean|_variants].json`` of the
 paper's model (``paper``, scored with our ranker too) and of ours (``ours``,
 ``fast_local``, ``robust``, ``robust_canon``, ``robust_join``, ``lean``,
-``lean_split``) and
+``lean_split``, ``lean_near``, ``lean_reach``) and
 writes a Markdown table:
 for each planner and stroke order, order agreement over matched pairs and
 over all pairs, exact order, direction, stroke and pixel accuracy and drawn /
@@ -50,7 +50,19 @@ ROWS = (
         "model",
         "ours, lean + learned splitter: strokes cut at corners, joined, crumbs drawn on; as traced",
     ),
-    ("lean_split", "ranker", "ours, lean + splitter + ranker (bundled default)"),
+    ("lean_split", "ranker", "ours, lean + splitter + ranker (previous default)"),
+    (
+        "lean_near",
+        "ranker",
+        "ours, the previous default; strokes that others draw over dropped",
+    ),
+    (
+        "lean_reach",
+        "model",
+        "ours, lean + splitter that also joins ends through the ink (configs/splitter_reach.py); "
+        "as traced",
+    ),
+    ("lean_reach", "ranker", "ours, lean + that splitter + ranker (bundled default)"),
 )
 
 # Files merged per planner, later ones overriding: whole test split, then other drawings.

@@ -18,10 +18,16 @@ the stroke it touches), and the candidates of the learned joiner of
 :mod:`jdraw.planner.splits`: pairs of stroke ends close together on ink
 (:func:`end_pairs`), their features (:func:`join_features`), their label
 from the reference strokes (:func:`end_owner`) and the strokes with chosen
-pairs joined (:func:`join_pairs`).
+pairs joined (:func:`join_pairs`). Ends a little further apart count too
+when a short path through the ink links them (:func:`bridge`): where a line
+crosses another, the local model may stop a few pixels short of the crossing
+and go on from a few pixels past it, and the join then draws the crossing
+again.
 """
 
 from __future__ import annotations
+
+from collections import deque
 
 import numpy as np
 
@@ -188,7 +194,55 @@ def absorb_crumbs(strokes, crumb: int = CRUMB) -> list:
 # ----------------------------------------------------------------------------
 # Pairs of stroke ends: the learned joiner's candidates (jdraw.planner.splits).
 
-JOIN_GEOMETRY = 21  # of a pair of ends (join_features)
+JOIN_GEOMETRY = 23  # of a pair of ends (join_features)
+REACH = 8  # pixels (Chebyshev, and moves along the ink) between ends linked through ink
+
+
+def _ink_path(ink: np.ndarray, a, b, moves: int) -> np.ndarray | None:
+    """The shortest 8-connected path of ink pixels from ``a`` to ``b`` (both
+    included), if one of at most ``moves`` moves exists; breadth first."""
+    h, w = ink.shape
+    a = tuple(int(v) for v in np.rint(a))
+    b = tuple(int(v) for v in np.rint(b))
+    prev = {a: a}
+    todo = deque([(a, 0)])
+    while todo:
+        c, n = todo.popleft()
+        if c == b:
+            out = [c]
+            while out[-1] != a:
+                out.append(prev[out[-1]])
+            return np.asarray(out[::-1], np.float64)
+        if n == moves:
+            continue
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                q = (c[0] + dx, c[1] + dy)
+                if q not in prev and 0 <= q[0] < w and 0 <= q[1] < h and ink[q[1], q[0]]:
+                    prev[q] = c
+                    todo.append((q, n + 1))
+    return None
+
+
+def bridge(a, b, ink=None, gap: int = GAP, reach: int = REACH) -> np.ndarray | None:
+    """Points strictly between two ends that a join draws, or ``None`` if they cannot join.
+
+    Ends at most ``gap`` pixels apart (Chebyshev) are linked straight, if the
+    pixels between them are ink (any, without ``ink``). Ends up to ``reach``
+    apart are linked by the shortest path through ``ink`` of at most
+    ``reach`` one-pixel moves, often over a line drawn already; without
+    ``ink`` they are not linked.
+    """
+    a = np.asarray(a, np.float64)
+    b = np.asarray(b, np.float64)
+    far = np.abs(a - b).max()
+    if far <= gap:
+        link = _link(a, b)
+        return link if _on_ink(np.concatenate([a[None], link, b[None]]), ink) else None
+    if ink is None or far > reach:
+        return None
+    path = _ink_path(np.asarray(ink, bool), a, b, reach)
+    return None if path is None else path[1:-1]
 
 
 def _end(p: np.ndarray, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -202,8 +256,11 @@ def _end(p: np.ndarray, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return q[-1], out[0], out[1]
 
 
-def end_pairs(strokes, ink=None, gap: int = GAP) -> list[tuple[int, bool, int, bool]]:
-    """Pairs of ends of different strokes at most ``gap`` pixels apart, joined on ink."""
+def end_pairs(
+    strokes, ink=None, gap: int = GAP, reach: int = REACH
+) -> list[tuple[int, bool, int, bool]]:
+    """Pairs of ends of different strokes that :func:`bridge` can link: at most
+    ``gap`` pixels apart on ink, or up to ``reach`` along a path through ``ink``."""
     ends = [
         (i, e, (p[-1] if e else p[0]))
         for i, p in enumerate(np.asarray(x, np.float64).reshape(-1, 2) for x in strokes)
@@ -214,22 +271,21 @@ def end_pairs(strokes, ink=None, gap: int = GAP) -> list[tuple[int, bool, int, b
     for a in range(len(ends)):
         for b in range(a + 1, len(ends)):
             (i, ie, pa), (j, je, pb) = ends[a], ends[b]
-            if i == j or np.abs(pa - pb).max() > gap:
+            if i == j or np.abs(pa - pb).max() > max(gap, reach if ink is not None else 0):
                 continue
-            between = np.concatenate([pa[None], _link(pa, pb), pb[None]])
-            if ink is not None and not _on_ink(between, ink):
-                continue
-            out.append((i, ie, j, je))
+            if bridge(pa, pb, ink, gap, reach) is not None:
+                out.append((i, ie, j, je))
     return out
 
 
-def join_features(strokes, pair, box=None) -> np.ndarray:
+def join_features(strokes, pair, box=None, ink=None) -> np.ndarray:
     """``float32 [JOIN_GEOMETRY]`` of joining two stroke ends (:func:`end_pairs`).
 
     How straight the line runs on through the two ends (near and further
-    back), their headings, where they are, the gap, both strokes' lengths,
-    whether each end is where its stroke began, and how crowded the place is
-    (other ends and other lines near it).
+    back), their headings, where they are, the gap and the moves of the
+    :func:`bridge` over ``ink``, both strokes' lengths, whether each end is
+    where its stroke began, and how crowded the place is (other ends and
+    other lines near it).
     """
     S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
     box = _box(S) if box is None else box
@@ -246,6 +302,7 @@ def join_features(strokes, pair, box=None) -> np.ndarray:
                 ends += 1
         if k not in (i, j):
             lines = min(lines, float(np.abs(q - c).max(-1).min()))
+    link = bridge(pa, pb, ink)
     f = [
         float(ha @ hb),
         float(fa @ fb),
@@ -265,6 +322,8 @@ def join_features(strokes, pair, box=None) -> np.ndarray:
         float(np.linalg.norm(S[j][0] - S[j][-1])) / 100,
         float(len(corners(S[i])) + len(corners(S[j]))) / 4,
         float(abs(ha @ fa) + abs(hb @ fb)) / 2,
+        float(np.abs(pa - pb).max() > GAP),
+        (len(link) + 1) / REACH if link is not None else 0.0,
     ]
     return np.asarray(f, np.float32)
 
@@ -280,13 +339,14 @@ def end_owner(points, at_end: bool, refs, reach: float = 8.0, skip: float = 1.0)
     return int(np.bincount(_owners(q[sel], refs)).argmax())
 
 
-def join_pairs(strokes, pairs) -> list[np.ndarray]:
+def join_pairs(strokes, pairs, ink=None) -> list[np.ndarray]:
     """Strokes with the chosen end pairs joined, each end used once, no loops.
 
     ``pairs`` are taken in the order given (best first); one that would
     reuse an end or close a ring of strokes is skipped. A chain is drawn from
     its first stroke's free end; a stroke turned round inks the same pixels
-    (:func:`jdraw.planner.ranker.reverse`).
+    (:func:`jdraw.planner.ranker.reverse`). Two ends are linked by their
+    :func:`bridge` over ``ink`` (straight if there is none).
     """
     S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
     parent = list(range(len(S)))
@@ -314,7 +374,8 @@ def join_pairs(strokes, pairs) -> list[np.ndarray]:
             seen.add(cur)
             p = S[cur] if not enter else reverse(S[cur])  # from the end entered
             if parts:
-                parts.append(_link(parts[-1][-1], p[0]))
+                between = bridge(parts[-1][-1], p[0], ink)
+                parts.append(_link(parts[-1][-1], p[0]) if between is None else between)
             parts.append(p)
             nxt = link.get((cur, not enter))  # leave by the other end
             if nxt is None:

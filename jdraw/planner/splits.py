@@ -19,7 +19,9 @@ strokes nearest the line on its two sides differ
 
 A split keeps every pixel: the two parts share the corner point, so the plan
 inks exactly what it inked before; a join adds only the pixels between two
-ends, and only where they are ink. Last, a crumb (a stroke of a few pixels
+ends, and only where they are ink: straight across a gap of a few pixels, or
+along the ink over a crossing the line was broken at. A stroke all of whose
+pixels others draw is then dropped. Last, a crumb (a stroke of a few pixels
 that touches another, most often what the local model left at a junction)
 is drawn as part of the stroke it touches (:func:`jdraw.planner.joins.absorb_crumbs`).
 """
@@ -33,7 +35,7 @@ import numpy as np
 from flax import nnx
 
 from jdraw.planner.corners import GEOMETRY_FEATURES, _box, corner_features, corners, split_at
-from jdraw.planner.joins import JOIN_GEOMETRY, end_pairs, join_features, join_pairs
+from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_pairs, join_features, join_pairs
 from jdraw.planner.ranker import MLP, chunked
 from jdraw.planner.stroke_tokens import stroke_masks
 
@@ -41,6 +43,13 @@ PATCH = 5  # pixels each side of a corner or a join the nets see of the ink and 
 _SIDE = 2 * PATCH + 1
 CORNER_FEATURES = GEOMETRY_FEATURES + 3 * _SIDE * _SIDE  # with the patches (all_corners)
 JOIN_FEATURES = JOIN_GEOMETRY + 3 * _SIDE * _SIDE
+NEAR_GEOMETRY = JOIN_GEOMETRY - 2  # a joiner of near ends only (reach 0) lacks the bridge's two
+
+
+def _join_width(patches: bool, reach: int) -> int:
+    if patches:
+        return JOIN_FEATURES
+    return JOIN_GEOMETRY if reach else NEAR_GEOMETRY
 
 
 def patch(img: np.ndarray, c) -> np.ndarray:
@@ -52,13 +61,21 @@ def patch(img: np.ndarray, c) -> np.ndarray:
 
 class Splitter(nnx.Module):
     """Log-odds that a drawn stroke should end at a corner (:func:`corner_features`)
-    and that two stroke ends should be one line (:func:`join_features`)."""
+    and that two stroke ends should be one line (:func:`join_features`).
 
-    def __init__(self, hidden: int = 64, patches: bool = True, *, rngs: nnx.Rngs):
+    ``reach``: how far apart two ends linked through the ink may be to be
+    joined (:func:`jdraw.planner.joins.bridge`); 0, only ends a few pixels
+    apart, as the first splitters did (their nets lack the bridge's features).
+    """
+
+    def __init__(
+        self, hidden: int = 64, patches: bool = True, reach: int = REACH, *, rngs: nnx.Rngs
+    ):
         self.hidden = hidden
         self.patches = patches  # whether the nets see the patches, or the geometry only
+        self.reach = reach
         self.split_net = MLP(CORNER_FEATURES if patches else GEOMETRY_FEATURES, hidden, rngs)
-        self.join_net = MLP(JOIN_FEATURES if patches else JOIN_GEOMETRY, hidden, rngs)
+        self.join_net = MLP(_join_width(patches, reach), hidden, rngs)
 
 
 @jax.jit
@@ -109,14 +126,17 @@ def all_corners(
     return keys, np.asarray(feats, np.float32).reshape(-1, width)
 
 
-def all_pairs(strokes, ink=None, drawn=None, patches: bool = True) -> tuple[list, np.ndarray]:
-    """Every joinable pair of ends (:func:`end_pairs`, on ``ink``) and its features.
+def all_pairs(
+    strokes, ink=None, drawn=None, patches: bool = True, reach: int = REACH
+) -> tuple[list, np.ndarray]:
+    """Every joinable pair of ends (:func:`end_pairs`, on ``ink``, up to ``reach``
+    apart through it) and its features.
 
     Its geometry (:func:`join_features`) and three patches around the two
     ends' midpoint: the ink as drawn (``drawn``) and each stroke's pixels;
     ``patches=False``: the geometry only.
     """
-    pairs = end_pairs(strokes, ink) if strokes else []
+    pairs = end_pairs(strokes, ink, reach=reach) if strokes else []
     feats = []
     if pairs:
         box = _box(strokes)
@@ -124,7 +144,8 @@ def all_pairs(strokes, ink=None, drawn=None, patches: bool = True) -> tuple[list
             masks = stroke_masks(strokes)
             seen = masks.any(0) if drawn is None else np.asarray(drawn, bool)
         for q in pairs:
-            f = [join_features(strokes, q, box)]
+            g = join_features(strokes, q, box, ink)
+            f = [g if patches or reach else g[:NEAR_GEOMETRY]]
             if patches:
                 i, ie, j, je = q
                 pi = np.asarray(strokes[i], np.float64).reshape(-1, 2)
@@ -132,7 +153,7 @@ def all_pairs(strokes, ink=None, drawn=None, patches: bool = True) -> tuple[list
                 c = ((pi[-1] if ie else pi[0]) + (pj[-1] if je else pj[0])) / 2
                 f += [patch(seen, c), patch(masks[i], c), patch(masks[j], c)]
             feats.append(np.concatenate(f))
-    width = JOIN_FEATURES if patches else JOIN_GEOMETRY
+    width = _join_width(patches, reach)
     return pairs, np.asarray(feats, np.float32).reshape(-1, width)
 
 
@@ -168,16 +189,38 @@ def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: 
     """
     inks = [None] * len(characters) if inks is None else inks
     drawn = [None] * len(characters) if drawn is None else drawn
-    found = [all_pairs(s, ink, d, splitter.patches) for s, ink, d in zip(characters, inks, drawn)]
+    found = [
+        all_pairs(s, ink, d, splitter.patches, splitter.reach)
+        for s, ink, d in zip(characters, inks, drawn)
+    ]
     x = np.concatenate([f for _, f in found]) if found else np.zeros((0, 1))
     logit = _score(_join_logits, splitter, x)
     out, at = [], 0
-    for strokes, (pairs, _) in zip(characters, found):
+    for strokes, ink, (pairs, _) in zip(characters, inks, found):
         z = logit[at : at + len(pairs)]
         at += len(pairs)
         chosen = [pairs[k] for k in np.argsort(-z) if z[k] > threshold]
-        out.append(join_pairs(strokes, chosen) if chosen else list(strokes))
+        out.append(join_pairs(strokes, chosen, ink) if chosen else list(strokes))
     return out
+
+
+def drop_covered(strokes) -> list:
+    """Strokes without those whose every pixel another stroke inks, smallest first.
+
+    A join through the ink (:func:`jdraw.planner.joins.bridge`) draws again a
+    crossing that the local model may have drawn as a piece of its own; that
+    piece is then drawn twice. The plan inks the same pixels without it.
+    """
+    if len(strokes) < 2:
+        return list(strokes)
+    masks = stroke_masks(strokes)
+    count = masks.sum(0)
+    keep = np.ones(len(strokes), bool)
+    for k in np.argsort(masks.sum((1, 2)), kind="stable"):
+        if masks[k].any() and (count[masks[k]] >= 2).all():
+            keep[k] = False
+            count -= masks[k]
+    return [s for s, kept in zip(strokes, keep) if kept]
 
 
 def edit_plan(plan, splitter: Splitter, targets=None, max_rows: int | None = None, drawn=None):
@@ -186,7 +229,8 @@ def edit_plan(plan, splitter: Splitter, targets=None, max_rows: int | None = Non
     Strokes are cut (:func:`split_many`), then joined (:func:`join_many`;
     ``targets``, the ink planned, keeps joins on ink; ``drawn``, the images as
     given before they were canonicalised, shows the nets the pen's outline),
-    then crumbs of a few pixels are drawn as part of the stroke they touch
+    then strokes drawn over by others are dropped (:func:`drop_covered`) and
+    crumbs of a few pixels are drawn as part of the stroke they touch
     (:func:`jdraw.planner.joins.absorb_crumbs`). An image whose edited strokes
     would need more than ``max_rows`` action rows keeps its strokes.
     """
@@ -199,7 +243,7 @@ def edit_plan(plan, splitter: Splitter, targets=None, max_rows: int | None = Non
     new = join_many(splitter, cut, inks, drawn)
     strokes = []
     for old, s in zip(plan.strokes, new):
-        s = absorb_crumbs(s)
+        s = absorb_crumbs(drop_covered(s))
         if max_rows is not None and len(actions_from_strokes(s)) > max_rows:
             s = old
         strokes.append(s)
@@ -213,8 +257,9 @@ def save(splitter: Splitter, out_dir, provenance: dict | None = None) -> pathlib
     meta = {
         "hidden": splitter.hidden,
         "patches": splitter.patches,
+        "reach": splitter.reach,
         "corner_features": CORNER_FEATURES if splitter.patches else GEOMETRY_FEATURES,
-        "join_features": JOIN_FEATURES if splitter.patches else JOIN_GEOMETRY,
+        "join_features": _join_width(splitter.patches, splitter.reach),
         "provenance": provenance or {},
     }
     return bundle.save_net(splitter, out_dir, "splitter", meta)
@@ -226,7 +271,8 @@ def load(bundle_dir) -> Splitter | None:
 
     def build(meta):
         patches = bool(meta.get("patches", False))
-        want = (CORNER_FEATURES, JOIN_FEATURES) if patches else (GEOMETRY_FEATURES, JOIN_GEOMETRY)
+        reach = int(meta.get("reach", 0))  # the first splitters joined near ends only
+        want = (CORNER_FEATURES if patches else GEOMETRY_FEATURES, _join_width(patches, reach))
         sizes = (meta.get("corner_features", want[0]), meta.get("join_features", want[1]))
         if tuple(sizes) != want:
             raise bundle.BundleError(
@@ -234,6 +280,6 @@ def load(bundle_dir) -> Splitter | None:
                 f"join features, this jdraw computes {want}; retrain it "
                 "(configs/splitter_lean.py)"
             )
-        return Splitter(int(meta.get("hidden", 64)), patches, rngs=nnx.Rngs(0))
+        return Splitter(int(meta.get("hidden", 64)), patches, reach, rngs=nnx.Rngs(0))
 
     return bundle.load_net(bundle_dir, "splitter", build)

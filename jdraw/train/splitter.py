@@ -7,8 +7,10 @@ whether the reference strokes nearest the line on its two sides differ
 (:func:`jdraw.planner.corners.corner_labels`). The strokes are then cut at the
 true splits, and every pair of stroke ends close together on ink becomes a
 join example, labelled by whether the line near both ends is one reference
-stroke. Examples are saved in the workdir a chunk at a time, so an
-interrupted run resumes where it stopped; the nets train in seconds.
+stroke (ends a few pixels further apart count too when a short path
+through the ink links them, :func:`jdraw.planner.joins.bridge`). Examples
+are saved in the workdir a chunk at a time, so an interrupted run resumes
+where it stopped; the nets train in seconds.
 """
 
 from __future__ import annotations
@@ -28,12 +30,13 @@ from jdraw.planner import corners, joins, splits
 from jdraw.train.ranker import read_chunks, traced_chunk, write_chunk
 
 
-def examples(traced, refs, ink, drawn=None) -> tuple[np.ndarray, ...]:
+def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[np.ndarray, ...]:
     """Split and join examples of one character: ``(xs, ys, xj, yj)``.
 
     Args:
       traced: the tracer's strokes; refs: the reference strokes; ink: the ink
-        planned (canonical); drawn: the ink as drawn before it was canonicalised.
+        planned (canonical); drawn: the ink as drawn before it was canonicalised;
+        reach: pixels between ends joined through the ink (0: near ends only).
     """
     strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in traced if len(s)]
     keys, xs = splits.all_corners(strokes, drawn)  # grouped by stroke, in stroke order
@@ -47,7 +50,7 @@ def examples(traced, refs, ink, drawn=None) -> tuple[np.ndarray, ...]:
         ys.append(lab)
         cut += corners.split_at(p, ks[lab]) if lab.any() else [p]
     ys = np.concatenate(ys) if ys else np.zeros(0)
-    pairs, xj = splits.all_pairs(cut, ink, drawn)
+    pairs, xj = splits.all_pairs(cut, ink, drawn, reach=reach)
     yj = [
         joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
@@ -69,16 +72,18 @@ def fit(
     seed: int = 0,
     patches: bool = True,
     hidden: int = 64,
+    reach: int = joins.REACH,
 ):
     """Fits a :class:`jdraw.planner.splits.Splitter` on stacked :func:`examples`.
 
     ``patches=False`` fits nets that see the geometry only (the first
-    features of each example).
+    features of each example); ``reach`` is the one the examples were made with.
     """
     xs, ys, xj, yj = data
     if not patches:
-        xs, xj = xs[:, : corners.GEOMETRY_FEATURES], xj[:, : joins.JOIN_GEOMETRY]
-    model = splits.Splitter(hidden, patches, rngs=nnx.Rngs(seed))
+        width = joins.JOIN_GEOMETRY if reach else splits.NEAR_GEOMETRY
+        xs, xj = xs[:, : corners.GEOMETRY_FEATURES], xj[:, :width]
+    model = splits.Splitter(hidden, patches, reach, rngs=nnx.Rngs(seed))
     tx = optax.adam(lr)
     graphdef, params = nnx.split(model, nnx.Param)
     opt = tx.init(params)
@@ -134,16 +139,21 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
         if path.exists():
             continue
         demos, drawn = traced_chunk(cfg, ks, pool, "traced", k)
-        write_chunk(path, [examples(s, d.strokes, d.target, d.drawn) for d, s in zip(demos, drawn)])
+        reach = int(cfg.get("reach", joins.REACH))
+        write_chunk(
+            path, [examples(s, d.strokes, d.target, d.drawn, reach) for d, s in zip(demos, drawn)]
+        )
     return paths
 
 
 def load_examples(paths) -> tuple[np.ndarray, ...]:
     data = read_chunks(paths, 4)
-    if data[0].shape[1] != splits.CORNER_FEATURES:
+    made = (data[0].shape[1], data[2].shape[1])
+    want = (splits.CORNER_FEATURES, splits.JOIN_FEATURES)
+    if made != want:
         raise ValueError(
-            f"{pathlib.Path(paths[0]).parent}: examples of {data[0].shape[1]} features, this "
-            f"jdraw makes {splits.CORNER_FEATURES}; delete them to remake them"
+            f"{pathlib.Path(paths[0]).parent}: examples of {made} corner and join features, "
+            f"this jdraw makes {want}; delete them to remake them"
         )
     return data
 
@@ -165,6 +175,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         seed=int(cfg.seed),
         patches=bool(cfg.get("patches", True)),
         hidden=int(cfg.get("hidden", 64)),
+        reach=int(cfg.get("reach", joins.REACH)),
     )
     t2 = time.time()
     result = {

@@ -261,6 +261,11 @@ def end_pairs(
 ) -> list[tuple[int, bool, int, bool]]:
     """Pairs of ends of different strokes that :func:`bridge` can link: at most
     ``gap`` pixels apart on ink, or up to ``reach`` along a path through ``ink``."""
+    return [pair for pair, _ in end_links(strokes, ink, gap, reach)]
+
+
+def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH) -> list:
+    """:func:`end_pairs` with each pair's :func:`bridge`: ``[((i, ie, j, je), points)]``."""
     ends = [
         (i, e, (p[-1] if e else p[0]))
         for i, p in enumerate(np.asarray(x, np.float64).reshape(-1, 2) for x in strokes)
@@ -273,17 +278,18 @@ def end_pairs(
             (i, ie, pa), (j, je, pb) = ends[a], ends[b]
             if i == j or np.abs(pa - pb).max() > max(gap, reach if ink is not None else 0):
                 continue
-            if bridge(pa, pb, ink, gap, reach) is not None:
-                out.append((i, ie, j, je))
+            link = bridge(pa, pb, ink, gap, reach)
+            if link is not None:
+                out.append(((i, ie, j, je), link))
     return out
 
 
-def join_features(strokes, pair, box=None, ink=None) -> np.ndarray:
-    """``float32 [JOIN_GEOMETRY]`` of joining two stroke ends (:func:`end_pairs`).
+def join_features(strokes, pair, box=None, link=None) -> np.ndarray:
+    """``float32 [JOIN_GEOMETRY]`` of joining two stroke ends (:func:`end_links`).
 
     How straight the line runs on through the two ends (near and further
-    back), their headings, where they are, the gap and the moves of the
-    :func:`bridge` over ``ink``, both strokes' lengths, whether each end is
+    back), their headings, where they are, the gap and the moves of their
+    :func:`bridge` (``link``, the points between), both strokes' lengths, whether each end is
     where its stroke began, and how crowded the place is (other ends and
     other lines near it).
     """
@@ -302,7 +308,6 @@ def join_features(strokes, pair, box=None, ink=None) -> np.ndarray:
                 ends += 1
         if k not in (i, j):
             lines = min(lines, float(np.abs(q - c).max(-1).min()))
-    link = bridge(pa, pb, ink)
     f = [
         float(ha @ hb),
         float(fa @ fb),

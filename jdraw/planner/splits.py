@@ -35,7 +35,7 @@ import numpy as np
 from flax import nnx
 
 from jdraw.planner.corners import GEOMETRY_FEATURES, _box, corner_features, corners, split_at
-from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_pairs, join_features, join_pairs
+from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_links, join_features, join_pairs
 from jdraw.planner.ranker import MLP, chunked
 from jdraw.planner.stroke_tokens import stroke_masks
 
@@ -46,7 +46,8 @@ JOIN_FEATURES = JOIN_GEOMETRY + 3 * _SIDE * _SIDE
 NEAR_GEOMETRY = JOIN_GEOMETRY - 2  # a joiner of near ends only (reach 0) lacks the bridge's two
 
 
-def _join_width(patches: bool, reach: int) -> int:
+def join_width(patches: bool, reach: int) -> int:
+    """How many features a splitter's join net reads (:class:`Splitter`)."""
     if patches:
         return JOIN_FEATURES
     return JOIN_GEOMETRY if reach else NEAR_GEOMETRY
@@ -75,7 +76,7 @@ class Splitter(nnx.Module):
         self.patches = patches  # whether the nets see the patches, or the geometry only
         self.reach = reach
         self.split_net = MLP(CORNER_FEATURES if patches else GEOMETRY_FEATURES, hidden, rngs)
-        self.join_net = MLP(_join_width(patches, reach), hidden, rngs)
+        self.join_net = MLP(join_width(patches, reach), hidden, rngs)
 
 
 @jax.jit
@@ -129,22 +130,23 @@ def all_corners(
 def all_pairs(
     strokes, ink=None, drawn=None, patches: bool = True, reach: int = REACH
 ) -> tuple[list, np.ndarray]:
-    """Every joinable pair of ends (:func:`end_pairs`, on ``ink``, up to ``reach``
+    """Every joinable pair of ends (:func:`end_links`, on ``ink``, up to ``reach``
     apart through it) and its features.
 
     Its geometry (:func:`join_features`) and three patches around the two
     ends' midpoint: the ink as drawn (``drawn``) and each stroke's pixels;
     ``patches=False``: the geometry only.
     """
-    pairs = end_pairs(strokes, ink, reach=reach) if strokes else []
+    found = end_links(strokes, ink, reach=reach) if strokes else []
+    pairs = [q for q, _ in found]
     feats = []
     if pairs:
         box = _box(strokes)
         if patches:
             masks = stroke_masks(strokes)
             seen = masks.any(0) if drawn is None else np.asarray(drawn, bool)
-        for q in pairs:
-            g = join_features(strokes, q, box, ink)
+        for q, link in found:
+            g = join_features(strokes, q, box, link)
             f = [g if patches or reach else g[:NEAR_GEOMETRY]]
             if patches:
                 i, ie, j, je = q
@@ -153,7 +155,7 @@ def all_pairs(
                 c = ((pi[-1] if ie else pi[0]) + (pj[-1] if je else pj[0])) / 2
                 f += [patch(seen, c), patch(masks[i], c), patch(masks[j], c)]
             feats.append(np.concatenate(f))
-    width = _join_width(patches, reach)
+    width = join_width(patches, reach)
     return pairs, np.asarray(feats, np.float32).reshape(-1, width)
 
 
@@ -259,7 +261,7 @@ def save(splitter: Splitter, out_dir, provenance: dict | None = None) -> pathlib
         "patches": splitter.patches,
         "reach": splitter.reach,
         "corner_features": CORNER_FEATURES if splitter.patches else GEOMETRY_FEATURES,
-        "join_features": _join_width(splitter.patches, splitter.reach),
+        "join_features": join_width(splitter.patches, splitter.reach),
         "provenance": provenance or {},
     }
     return bundle.save_net(splitter, out_dir, "splitter", meta)
@@ -272,7 +274,7 @@ def load(bundle_dir) -> Splitter | None:
     def build(meta):
         patches = bool(meta.get("patches", False))
         reach = int(meta.get("reach", 0))  # the first splitters joined near ends only
-        want = (CORNER_FEATURES if patches else GEOMETRY_FEATURES, _join_width(patches, reach))
+        want = (CORNER_FEATURES if patches else GEOMETRY_FEATURES, join_width(patches, reach))
         sizes = (meta.get("corner_features", want[0]), meta.get("join_features", want[1]))
         if tuple(sizes) != want:
             raise bundle.BundleError(

@@ -81,8 +81,8 @@ def fit(
     """
     xs, ys, xj, yj = data
     if not patches:
-        width = joins.JOIN_GEOMETRY if reach else splits.NEAR_GEOMETRY
-        xs, xj = xs[:, : corners.GEOMETRY_FEATURES], xj[:, :width]
+        xs = xs[:, : corners.GEOMETRY_FEATURES]
+        xj = xj[:, : splits.join_width(False, reach)]
     model = splits.Splitter(hidden, patches, reach, rngs=nnx.Rngs(seed))
     tx = optax.adam(lr)
     graphdef, params = nnx.split(model, nnx.Param)

@@ -48,6 +48,9 @@ _SPLIT = flags.DEFINE_string(
     "Cut strokes at corners and join ends with the learned splitter (jdraw.planner.splits): "
     "auto (if the checkpoint has one), yes, no, or a folder holding another splitter.",
 )
+_LATIN = flags.DEFINE_integer(
+    "latin", 4, "Drawings of each Latin dev glyph per style (jdraw.evaluation.latin); 0 skips."
+)
 _RANKER = flags.DEFINE_string(
     "ranker", None, "Folder with a stroke ranker to use instead of the checkpoint's own."
 )
@@ -70,9 +73,17 @@ def main(argv):
         canonicalise=_CANON.value,
         join={"auto": None, "yes": True, "no": False}[_JOIN.value],
         split={"auto": None, "yes": True, "no": False}.get(_SPLIT.value, _SPLIT.value),
+        latin_copies=_LATIN.value,
     )
+    for style, m in res.get("latin_dev", {}).items():
+        if isinstance(m, dict):
+            print(
+                f"latin_dev {style:5s} stroke {m['stroke_acc']:.4f}  order, all pairs "
+                f"{m['order_all_pairs']:.4f}  direction {m['direction_agreement']:.4f}  "
+                f"strokes/true {m['stroke_ratio']:.3f}  (n={m['n']})"
+            )
     for k, r in res.items():
-        if not isinstance(r, dict):
+        if not isinstance(r, dict) or "by_order" not in r:
             continue
         for o, m in r["by_order"].items():
             print(

@@ -61,36 +61,50 @@ def plan_chars(
     Returns ``(demos, inputs bool [N, 100, 100], plan)``; ``inputs`` are the
     images planned: the demonstrations' targets, or ``style``'s drawing.
     """
-    from jdraw.plans import Plan
-
     demos = [demo.sample(ks, int(i)) for i in idx]
     if style is None:
         inputs = np.stack([d.target for d in demos])
     else:
         inputs = np.stack([rasterise(ks, int(i), style) for i in idx])
-    it = range(0, len(demos), batch)
+    plan = plan_batched(
+        inputs,
+        checkpoint,
+        batch=batch,
+        progress=progress,
+        desc=f"planning {style or 'kanjivg'}",
+        max_steps=max_steps,
+        canonicalise=canonicalise,
+        join=join,
+        split=split,
+    )
+    return demos, inputs, plan
+
+
+def plan_batched(
+    inputs: np.ndarray, checkpoint, batch: int = 32, progress: bool = True, desc="planning", **kw
+):
+    """Plans ``inputs`` ``bool [N, 100, 100]`` in batches of ``batch`` as traced.
+
+    Every call has the compiled batch size (the last batch is padded); ``kw``
+    goes to ``jdraw.plan``. Returns one :class:`jdraw.Plan` of all ``N``.
+    """
+    from jdraw.plans import Plan
+
+    it = range(0, len(inputs), batch)
     if progress:
         from tqdm import tqdm
 
-        it = tqdm(it, desc=f"planning {style or 'kanjivg'}", unit="batch")
+        it = tqdm(it, desc=desc, unit="batch")
     parts = []
     for s in it:
         chunk = inputs[s : s + batch]
         n = len(chunk)
         if n < batch:  # pad to the compiled batch size
             chunk = np.concatenate([chunk, np.zeros((batch - n, 100, 100), bool)])
-        p = api.plan(
-            chunk,
-            checkpoint=checkpoint,
-            max_steps=max_steps,
-            order="model",
-            canonicalise=canonicalise,
-            join=join,
-            split=split,
-        )
+        p = api.plan(chunk, checkpoint=checkpoint, order="model", **kw)
         parts.append(Plan(p.strokes[:n], p.actions[:n], p.lengths[:n], p.truncated[:n]))
     T = max(p.actions.shape[1] for p in parts)
-    plan = Plan(
+    return Plan(
         strokes=[s for p in parts for s in p.strokes],
         actions=np.concatenate(
             [np.pad(p.actions, ((0, 0), (0, T - p.actions.shape[1]), (0, 0))) for p in parts]
@@ -98,7 +112,6 @@ def plan_chars(
         lengths=np.concatenate([p.lengths for p in parts]),
         truncated=np.concatenate([p.truncated for p in parts]),
     )
-    return demos, inputs, plan
 
 
 def evaluate(
@@ -118,6 +131,7 @@ def evaluate(
     canonicalise: bool = True,
     join: bool | None = None,
     split=None,
+    latin_copies: int = 0,
 ) -> dict:
     """Scores a checkpoint; writes ``{out_dir}/{name}.json`` and ``{name}_fig3.png``.
 
@@ -136,6 +150,8 @@ def evaluate(
       join: passed to ``jdraw.plan`` (``None``: as the checkpoint says).
       split: passed to ``jdraw.plan`` (``None``: the checkpoint's splitter if it
         has one; a folder: the splitter there).
+      latin_copies: also score the Latin dev glyphs (:mod:`jdraw.evaluation.latin`),
+        each drawn this many times in each style, under ``"latin_dev"``; 0 skips.
 
     Each split's entry holds the metrics of the order ``jdraw.plan`` uses by
     default for this checkpoint (the ranker's if it has one) and, under
@@ -190,6 +206,18 @@ def evaluate(
             p = ranker.reorder(plan, default, rk)
             for d, s in list(zip(demos, p.strokes))[:figure_chars]:
                 fig_rows.append(figures.fig3_row(d.target, s))
+    if latin_copies:
+        from jdraw.evaluation.latin import evaluate_latin
+
+        res["latin_dev"] = evaluate_latin(
+            checkpoint,
+            copies=latin_copies,
+            batch=batch,
+            progress=progress,
+            canonicalise=canonicalise,
+            join=join,
+            split=split,
+        )
     res["seconds"] = time.time() - t0
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -20,7 +20,7 @@ import optax
 from flax import nnx
 
 from jdraw.data import demos as demo
-from jdraw.data import kanji, variants
+from jdraw.data import variants
 from jdraw.planner import ranker
 
 
@@ -108,20 +108,20 @@ def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3,
     return model, logs
 
 
-def _chunk_path(workdir: pathlib.Path, kind: str, k: int) -> pathlib.Path:
-    return workdir / "examples" / f"{kind}_{k:04d}.npz"
-
-
-def traced_chunk(cfg, ks, pool, kind: str, k: int):
+def traced_chunk(cfg, ks, pool, kind: str, k: int, salt: int = 0):
     """Chunk ``k`` of ``cfg.chunk`` augmented training characters and their strokes.
 
     ``kind="traced"``: drawn as ``cfg.get("styles")`` says (:func:`jdraw.data.variants.sample`)
     and planned by ``cfg.tracer`` (its own noisy strokes); ``"demo"``: KanjiVG's
-    strokes as they are. Returns the demonstrations and each one's strokes.
+    strokes as they are. ``salt`` (:func:`jdraw.data.mix.salt`) keeps another
+    set's draws apart from KanjiVG's, which stay as they were; ``cfg.tracer_split``
+    lets the tracer's splitter cut and join its strokes first. Returns the
+    demonstrations and each one's strokes.
     """
     from jdraw.planner import plan as api
 
-    rng = np.random.default_rng([int(cfg.seed), k, int(kind == "demo")])
+    seed = [int(cfg.seed), k, int(kind == "demo")] + ([salt] if salt else [])
+    rng = np.random.default_rng(seed)
     styles = variants.weights(cfg.get("styles", None) if kind == "traced" else None)
     demos = [
         demo.sample(ks, int(rng.choice(pool)), rng, float(cfg.augment))
@@ -131,43 +131,79 @@ def traced_chunk(cfg, ks, pool, kind: str, k: int):
     ]
     if kind == "traced":
         targets = np.stack([d.target for d in demos])
-        drawn = api.plan(targets, checkpoint=cfg.tracer, order="model").strokes
+        drawn = api.plan(
+            targets,
+            checkpoint=cfg.tracer,
+            order="model",
+            split=bool(cfg.get("tracer_split", False)),
+        ).strokes
     else:
         drawn = [d.strokes for d in demos]
     return demos, drawn
 
 
-def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
-    """Labelled examples in chunks of ``cfg.chunk`` augmented training characters.
+def chunk_jobs(cfg) -> list[tuple[str, str, int]]:
+    """``(set, kind, k)`` of every chunk: KanjiVG's, then ``cfg.extra``'s (``{name: chars}``)."""
+    jobs = [("kanji", "demo", k) for k in range(int(np.ceil(cfg.get("demo_chars", 0) / cfg.chunk)))]
+    jobs += [("kanji", "traced", k) for k in range(int(np.ceil(cfg.chars / cfg.chunk)))]
+    for name, chars in dict(cfg.get("extra", None) or {}).items():
+        jobs += [(name, "traced", k) for k in range(int(np.ceil(chars / cfg.chunk)))]
+    return jobs
 
-    ``cfg.chars`` characters are planned by the tracer (its own noisy
-    strokes), drawn as ``cfg.get("styles")`` says if given
-    (:func:`jdraw.data.variants.sample`); ``cfg.get("demo_chars", 0)`` more
-    contribute KanjiVG's strokes as they are. One npz per chunk, written whole or not at all.
+
+def chunk_path(workdir: pathlib.Path, name: str, kind: str, k: int) -> pathlib.Path:
+    """Where chunk ``k`` goes; KanjiVG's keep the names they had before other sets."""
+    tag = kind if name == "kanji" else f"{kind}_{name}"
+    return workdir / "examples" / f"{tag}_{k:04d}.npz"
+
+
+def made_chunks(cfg, workdir, label, progress: bool = True) -> list[pathlib.Path]:
+    """Traces every chunk of :func:`chunk_jobs` not yet saved; ``label(demos, drawn)`` -> parts.
+
+    One npz per chunk, written whole or not at all, so an interrupted run resumes.
     """
+    from jdraw.data import mix
+
     workdir = pathlib.Path(workdir)
     (workdir / "examples").mkdir(parents=True, exist_ok=True)
-    ks = kanji.load(progress=progress)
-    pool = kanji.split_indices(ks, "train")
-    jobs = [("demo", k) for k in range(int(np.ceil(cfg.get("demo_chars", 0) / cfg.chunk)))]
-    jobs += [("traced", k) for k in range(int(np.ceil(cfg.chars / cfg.chunk)))]
+    jobs = chunk_jobs(cfg)
+    sets: dict = {}
     it = jobs
     if progress:
         from tqdm import tqdm
 
         it = tqdm(jobs, desc="examples", unit="chunk")
     paths = []
-    for kind, k in it:
-        path = _chunk_path(workdir, kind, k)
+    for name, kind, k in it:
+        path = chunk_path(workdir, name, kind, k)
         paths.append(path)
         if path.exists():
             continue
-        demos, drawn = traced_chunk(cfg, ks, pool, kind, k)
-        parts = [
+        if name not in sets:
+            sets[name] = mix.load(name, progress=progress)
+        ks, pool = sets[name]
+        demos, drawn = traced_chunk(cfg, ks, pool, kind, k, salt=mix.salt(name))
+        parts = [p for p in label(demos, drawn) if p is not None]
+        write_chunk(path, parts)
+    return paths
+
+
+def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
+    """Labelled examples in chunks of ``cfg.chunk`` augmented training characters.
+
+    ``cfg.chars`` KanjiVG characters are planned by the tracer (its own noisy
+    strokes), drawn as ``cfg.get("styles")`` says if given
+    (:func:`jdraw.data.variants.sample`); ``cfg.get("demo_chars", 0)`` more
+    contribute KanjiVG's strokes as they are; ``cfg.get("extra")`` adds other
+    sets (:mod:`jdraw.data.mix`).
+    """
+
+    def label(demos, drawn):
+        return [
             examples(s, ranker.stroke_masks(d.strokes), d.strokes) for d, s in zip(demos, drawn)
         ]
-        write_chunk(path, [p for p in parts if p is not None])
-    return paths
+
+    return made_chunks(cfg, workdir, label, progress=progress)
 
 
 def write_chunk(path: pathlib.Path, parts) -> None:

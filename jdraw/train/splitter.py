@@ -25,9 +25,8 @@ import numpy as np
 import optax
 from flax import nnx
 
-from jdraw.data import kanji
 from jdraw.planner import corners, joins, splits
-from jdraw.train.ranker import read_chunks, traced_chunk, write_chunk
+from jdraw.train.ranker import made_chunks, read_chunks
 
 
 def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[np.ndarray, ...]:
@@ -122,28 +121,17 @@ def fit(
 
 
 def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
-    """Examples in chunks of ``cfg.chunk`` traced characters, one npz each, whole or not at all."""
-    workdir = pathlib.Path(workdir)
-    (workdir / "examples").mkdir(parents=True, exist_ok=True)
-    ks = kanji.load(progress=progress)
-    pool = kanji.split_indices(ks, "train")
-    jobs = range(int(np.ceil(cfg.chars / cfg.chunk)))
-    if progress:
-        from tqdm import tqdm
+    """Examples in chunks of ``cfg.chunk`` traced characters, one npz each, whole or not at all.
 
-        jobs = tqdm(jobs, desc="examples", unit="chunk")
-    paths = []
-    for k in jobs:
-        path = workdir / "examples" / f"traced_{k:04d}.npz"
-        paths.append(path)
-        if path.exists():
-            continue
-        demos, drawn = traced_chunk(cfg, ks, pool, "traced", k)
-        reach = int(cfg.get("reach", joins.REACH))
-        write_chunk(
-            path, [examples(s, d.strokes, d.target, d.drawn, reach) for d, s in zip(demos, drawn)]
-        )
-    return paths
+    KanjiVG's training characters, and ``cfg.get("extra")``'s other sets
+    (:mod:`jdraw.data.mix`), each planned by the tracer without a splitter.
+    """
+    reach = int(cfg.get("reach", joins.REACH))
+
+    def label(demos, drawn):
+        return [examples(s, d.strokes, d.target, d.drawn, reach) for d, s in zip(demos, drawn)]
+
+    return made_chunks(cfg, workdir, label, progress=progress)
 
 
 def load_examples(paths) -> tuple[np.ndarray, ...]:

@@ -1,0 +1,62 @@
+"""The Latin table (jdraw.data.latin): what the school model says, as demonstrations."""
+
+import numpy as np
+
+from jdraw.data import demos as demo
+from jdraw.data import latin, mix
+
+
+def _first_last(g):
+    s = latin.GLYPHS[g]
+    return s[0][0], s[0][-1]
+
+
+def test_table_follows_the_school_rules():
+    # One stroke each where the school model writes one.
+    for g in "023678NMSZsovzCGO":
+        assert len(latin.GLYPHS[g]) == 1, g
+    # Strokes start at the top: straight strokes are pulled down, bars slide right.
+    for g in "EFHILT":
+        start, end = _first_last(g)
+        assert start[1] < end[1], g  # the stem first, top to bottom
+    for g, k in [("E", 1), ("E", 2), ("E", 3), ("t", 1), ("f", 1)]:
+        bar = latin.GLYPHS[g][k]
+        assert bar[0][0] < bar[-1][0], (g, k)  # left to right
+    # E's bars top to bottom; 5's top bar last; i and j dotted last.
+    assert [latin.GLYPHS["E"][k][0][1] for k in (1, 2, 3)] == [0, 0.5, 1]
+    top_bar = latin.GLYPHS["5"][-1]
+    assert np.ptp(top_bar[:, 1]) == 0 and top_bar[0][1] == 0
+    for g in "ij":
+        assert np.ptp(latin.GLYPHS[g][-1], 0).max() < 0.1  # the dot
+    # Circles start at the top right and run counter-clockwise (y down: the signed
+    # area of the closed path is negative).
+    for g in "ocO0":
+        p = latin.GLYPHS[g][0]
+        x, y = p[:, 0], p[:, 1]
+        area = 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
+        assert area < 0, g
+        assert p[0][1] < np.median(y), g  # starts in the upper half
+
+
+def test_dev_glyphs_are_held_out_of_training():
+    dev, train = set(latin.names("dev")), set(latin.names("train"))
+    assert len(dev) == 14 and not dev & train and dev | train == set(latin.GLYPHS)
+    ks, pool = mix.load("latin")
+    assert {chr(int(c)) for c in ks.codes[pool]} == train
+
+
+def test_glyphs_become_demonstrations_inside_the_canvas():
+    ks = latin.load()
+    assert len(ks) == len(latin.GLYPHS)
+    for i in range(len(ks)):
+        g = chr(int(ks.codes[i]))
+        d = demo.sample(ks, i)
+        assert len(d.strokes) == len(latin.GLYPHS[g])
+        pts = np.concatenate(d.strokes)
+        assert pts.min() >= 0 and pts.max() <= 99
+        # Fitted to the canvas as plan_image fits a small drawing: the longer side ~80 px.
+        assert 70 <= np.ptp(pts, 0).max() <= 82, g
+        # The demonstration starts where the table's first stroke does (within a pixel
+        # of the scaled point).
+        first = latin.to_canvas(latin.GLYPHS[g])[0][0]
+        assert np.abs(d.strokes[0][0] - first).max() <= 1.0, g

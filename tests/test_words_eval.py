@@ -1,0 +1,52 @@
+"""Counting and rendering of the cursive-word evaluation (jdraw.evaluation.words)."""
+
+import numpy as np
+import pytest
+
+from jdraw.evaluation import words
+
+
+def _line(x0, x1, y):
+    return np.array([[x0, y], [x1, y]], float)
+
+
+def test_pieces_are_8_connected():
+    ink = np.zeros((10, 10), bool)
+    ink[2, 2] = ink[3, 3] = True  # diagonal neighbours: one piece
+    ink[7, 1:5] = True
+    assert words.pieces(ink) == 2
+    assert words.pieces(np.zeros((4, 4), bool)) == 0
+
+
+def test_score_word_counts_strokes_per_piece():
+    ink = np.zeros((20, 40), bool)
+    ink[5, 2:16] = True
+    ink[14, 2:31] = True
+    written = [_line(2, 15, 5), _line(2, 30, 14)]
+    # The second piece drawn in two strokes, cut three quarters along.
+    drawn = [_line(2, 15, 5), _line(2, 23, 14), _line(24, 30, 14)]
+    r = words.score_word(ink, written, drawn)
+    assert (r["written"], r["drawn"], r["pieces"]) == (2, 3, 2)
+    assert r["stroke_ratio"] == pytest.approx(1.5)
+    assert r["strokes_per_piece"] == pytest.approx(1.5)
+    assert r["written_per_piece"] == pytest.approx(1.0)
+    assert r["order_all_pairs"] == 1.0 and r["direction"] == 1.0
+    assert 0.6 < r["stroke_acc"] < 1.0  # the short piece overlaps its stroke a little
+    perfect = words.score_word(ink, written, written)
+    assert perfect["stroke_acc"] == pytest.approx(1.0) and perfect["strokes_per_piece"] == 1.0
+    # Drawn in the other order and backwards: order and direction both wrong.
+    back = words.score_word(ink, written, [p[::-1] for p in written[::-1]])
+    assert back["order_all_pairs"] == 0.0 and back["direction"] == 0.0
+
+
+def test_render_word_inks_its_written_strokes():
+    h = words.word_height("hello")
+    assert words.MIN_HEIGHT <= h <= words.MAX_HEIGHT and h == words.word_height("hello")
+    img, written = words.render_word("hello", 120)
+    ink = img < 128
+    rows = np.flatnonzero(ink.any(1))
+    assert 120 <= rows[-1] - rows[0] <= 120 + words.PEN + 1  # the pen reaches past the line
+    for p in written:
+        q = np.floor(p + 0.5).astype(int)
+        assert ink[q[:, 1], q[:, 0]].all()
+    assert len(written) == 4 and words.pieces(ink) <= len(written)

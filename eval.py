@@ -10,12 +10,14 @@ Writes results/NAME.json (pixel/stroke accuracy, stroke order over matched
 and over all pairs, exact order, direction, drawn/true strokes, on 100 random
 train and test characters, the whole test split, and the test split drawn by
 OpenCV 1, 3 and 5 pixels wide; each as traced, x + y sorted and, where the
-checkpoint has a ranker, ranked) and results/NAME_fig3.png.
+checkpoint has a ranker, ranked) and results/NAME_fig3.png. With --words=N (default
+40, 0 skips) it also plans N cursive words of --words_split with jdraw.plan_image and
+puts their scores under "cursive_words" (jdraw.evaluation.words).
 """
 
 from absl import app, flags, logging
 
-from jdraw.evaluation import evaluate
+from jdraw.evaluation import evaluate, words
 
 _CKPT = flags.DEFINE_string(
     "checkpoint", None, "Bundle folder or training workdir (default: bundled)."
@@ -53,6 +55,12 @@ _LATIN = flags.DEFINE_integer(
 )
 _RANKER = flags.DEFINE_string(
     "ranker", None, "Folder with a stroke ranker to use instead of the checkpoint's own."
+)
+_WORDS = flags.DEFINE_integer(
+    "words", 40, "Cursive words planned with jdraw.plan_image and scored; 0 skips."
+)
+_WORDS_SPLIT = flags.DEFINE_enum(
+    "words_split", "val", ["train", "val", "test"], "Split of the cursive words."
 )
 
 
@@ -92,6 +100,15 @@ def main(argv):
                 f"exact {m['exact_order']:.3f})  direction {m['direction_agreement']:.4f}  "
                 f"strokes/true {m['stroke_ratio']:.3f}  (n={m['n']})"
             )
+    if _WORDS.value:
+        w = words.evaluate_words(
+            _WORDS_SPLIT.value,
+            _WORDS.value,
+            checkpoint=_CKPT.value,
+            split_strokes={"yes": True, "no": False}.get(_SPLIT.value),
+        )
+        words.add_to_results(f"{_OUT.value}/{_NAME.value}.json", w)
+        print(words.summary(w))
 
 
 if __name__ == "__main__":

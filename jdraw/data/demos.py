@@ -19,7 +19,7 @@ from jdraw.data import kanji
 CANVAS = geometry.CANVAS
 
 
-def clean_path(pixels: np.ndarray) -> np.ndarray:
+def clean_path(pixels: np.ndarray, keep_turns: bool = False) -> np.ndarray:
     """Makes an integer point sequence a thin 8-connected path.
 
     Gaps are filled with :func:`geometry.polyline_pixels`; a pixel whose
@@ -28,6 +28,11 @@ def clean_path(pixels: np.ndarray) -> np.ndarray:
 
     Args:
       pixels: ``[n, 2]`` int (x, y).
+      keep_turns: keep a turn back onto the pixel the path came from, so a
+        line drawn there and back (a cursive connector going back over the
+        letter it landed on, :mod:`jdraw.data.cursive`) stays drawn twice.
+        By default such a turn is a corner, and the way back erases the way
+        there.
 
     Returns:
       ``[m, 2]`` int64 path, consecutive pixels 8-adjacent.
@@ -37,7 +42,11 @@ def clean_path(pixels: np.ndarray) -> np.ndarray:
     for p in path:
         if out and np.array_equal(out[-1], p):
             continue
-        if len(out) >= 2 and np.max(np.abs(out[-2] - p)) <= 1:
+        if (
+            len(out) >= 2
+            and np.max(np.abs(out[-2] - p)) <= 1
+            and not (keep_turns and np.array_equal(out[-2], p))
+        ):
             out.pop()  # out[-1] was a corner: its neighbours touch directly
             if np.array_equal(out[-1], p):
                 continue
@@ -89,12 +98,14 @@ class Demo:
         return np.stack([geometry.render_strokes([s]) for s in self.strokes])
 
 
-def from_control_points(strokes_ctrl, affine=None) -> Demo:
+def from_control_points(strokes_ctrl, affine=None, keep_turns: bool = False) -> Demo:
     """Builds the demonstration of one character.
 
     Args:
       strokes_ctrl: list of ``[K, 4, 2]`` cubic control points (canvas units).
       affine: optional ``(A [2, 2], t [2])`` applied to the control points.
+      keep_turns: passed to :func:`clean_path` (True for strokes that go back
+        over their own line, as cursive words' do).
     """
     strokes, target = [], np.zeros((CANVAS, CANVAS), bool)
     for c in strokes_ctrl:
@@ -102,21 +113,28 @@ def from_control_points(strokes_ctrl, affine=None) -> Demo:
             c = c @ affine[0].T + affine[1]
         pts = np.floor(kanji.sample_cubics(c) + 0.5).astype(np.int64)
         pts = np.clip(pts, 0, CANVAS - 1)
-        path = clean_path(pts)
+        path = clean_path(pts, keep_turns)
         strokes.append(decompose(path))
         target[path[:, 1], path[:, 0]] = True
     return Demo(strokes=strokes, target=target)
 
 
 def sample(
-    ks: kanji.KanjiSet, i: int, rng: np.random.Generator | None = None, strength=1.0
+    ks: kanji.KanjiSet,
+    i: int,
+    rng: np.random.Generator | None = None,
+    strength=1.0,
+    keep_turns: bool = False,
 ) -> Demo:
-    """Demonstration of character ``i``, augmented when ``rng`` is given."""
+    """Demonstration of character ``i``, augmented when ``rng`` is given.
+
+    ``keep_turns``: see :func:`clean_path` (True for :func:`jdraw.data.cursive.fragments`).
+    """
     strokes = ks.strokes(i)
     affine = None
     if rng is not None and strength > 0:
         affine = kanji.random_affine(rng, np.concatenate(strokes), strength)
-    return from_control_points(strokes, affine)
+    return from_control_points(strokes, affine, keep_turns)
 
 
 def replay_arrays(demos: list[Demo], max_strokes: int, max_moves: int):

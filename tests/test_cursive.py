@@ -51,8 +51,22 @@ def test_joined_letters_make_one_stroke_and_dots_come_last():
     assert len(s) == 3
     np.testing.assert_allclose(s[1], np.add(i["paths"][1], (h["adv"], 0)))
     np.testing.assert_allclose(s[2], np.add(t["paths"][1], (h["adv"] + i["adv"], 0)))
-    # The font leaves a gap before a: "ha" is two strokes.
-    assert len(cursive.word_strokes("ha")) == 2
+    # b ends at the foot of its bowl, away from m's entry and lines: two strokes.
+    assert len(cursive.word_strokes_units("bm")) == 2
+
+
+def test_a_connector_landing_on_the_next_letter_runs_on_through_it():
+    glyphs = cursive.font()["glyphs"]
+    h = np.asarray(glyphs["h"]["paths"][0])
+    a = np.asarray(glyphs["a"]["paths"][0])[::-1] + (glyphs["h"]["adv"], 0)  # as written
+    (s,) = cursive.word_strokes_units("ha")
+    np.testing.assert_allclose(s[: len(h)], h)
+    np.testing.assert_allclose(s[len(s) - len(a) :], a)  # then all of a, from its start
+    # In between, the pen goes back along a, from where h's tail lands to a's start.
+    back = s[len(h) - 1 : len(s) - len(a) + 1]
+    assert np.linalg.norm(back[1] - back[0]) <= cursive.JOIN_TOL
+    for q in back[1:]:
+        assert min(np.linalg.norm(q - a, axis=1).min(), _to_line(q, a)) < 1e-6
 
 
 def test_direction_is_the_writers_not_the_fonts():
@@ -100,7 +114,7 @@ def test_fragments_lie_in_the_canvas_and_encode_the_polylines():
         # The demonstration's pixels are the polylines' pixels, to a pixel. The demo's
         # path cleaning (jdraw.data.demos.clean_path) shortens a cusp where a stroke
         # turns back on itself by a pixel or two, so a little of the line may be missing.
-        d = demos.sample(ks, i)
+        d = demos.sample(ks, i, keep_turns=True)
         assert len(d.strokes) == len(lines)
         covered = total = 0
         for st, p in zip(d.strokes, lines):
@@ -112,7 +126,24 @@ def test_fragments_lie_in_the_canvas_and_encode_the_polylines():
         assert covered >= 0.97 * total
 
 
+def _to_line(q, p):
+    a, d = p[:-1], np.diff(p, axis=0)
+    t = np.clip(np.sum((q - a) * d, 1) / np.sum(d * d, 1), 0, 1)
+    return np.linalg.norm(a + t[:, None] * d - q, axis=1).min()
+
+
 def _dilate(img):
     import cv2
 
     return cv2.dilate(img.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+
+
+def test_clean_path_keeps_a_line_drawn_back_over_itself():
+    there_and_back = np.array([[0, 0], [4, 0], [1, 0], [1, 3]])
+    p = demos.clean_path(there_and_back, keep_turns=True)
+    np.testing.assert_array_equal(p[:, 0], [0, 1, 2, 3, 4, 3, 2, 1, 1, 1])  # (1, 0) a corner
+    assert np.max(np.abs(np.diff(p, axis=0))) == 1
+    # By default the way back erases the way there; staircase corners go either way.
+    np.testing.assert_array_equal(demos.clean_path(there_and_back)[:, 0], [0, 1, 1, 1])
+    stairs = demos.clean_path(np.array([[0, 0], [1, 0], [1, 1], [2, 1], [2, 2]]), True)
+    assert np.all(np.max(np.abs(stairs[2:] - stairs[:-2]), axis=1) == 2)

@@ -10,15 +10,12 @@ from __future__ import annotations
 import base64
 import json
 import os
-import pathlib
 import time
 
 import pytest
 
 from jdraw import cli
-
-CHROMIUM = "/usr/bin/chromium"
-CHROMEDRIVER = "/usr/bin/chromedriver"
+from tests.web_helpers import CHROMEDRIVER, CHROMIUM
 
 if os.environ.get("CI"):
     import selenium  # noqa: F401
@@ -31,32 +28,14 @@ else:
         pytest.skip("apt-get install chromium chromium-driver", allow_module_level=True)
 
 import httpx  # noqa: E402
-from selenium import webdriver  # noqa: E402
-from selenium.webdriver.chrome.service import Service  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 
 from jdraw.web.app import create_app  # noqa: E402
-from tests.web_helpers import live_server  # noqa: E402
+from tests.web_helpers import chromium, live_server  # noqa: E402
 
 # The first plan compiles the bundled model (about 30 s on 2 idle cores, more when shared).
 PLAN_WAIT_S = 600
-
-
-def chromium(download_dir: pathlib.Path | None = None, size=(1280, 900)) -> webdriver.Chrome:
-    """Headless Debian chromium; downloads go to ``download_dir``."""
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = CHROMIUM
-    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu"):
-        opts.add_argument(arg)
-    opts.add_argument(f"--window-size={size[0]},{size[1]}")
-    if download_dir is not None:
-        prefs = {
-            "download.default_directory": str(download_dir),
-            "download.prompt_for_download": False,
-        }
-        opts.add_experimental_option("prefs", prefs)
-    return webdriver.Chrome(service=Service(executable_path=CHROMEDRIVER), options=opts)
 
 
 def wait_for(driver, condition, timeout_s: float, what: str):

@@ -1,8 +1,12 @@
-"""Helpers for the web tests and bench/serve_load.py: a server in a thread, a PNG bomb."""
+"""Helpers for the web tests, bench/serve_load.py and examples/web_screenshot.py.
+
+A server in a thread, Debian's headless chromium, a PNG decompression bomb.
+"""
 
 from __future__ import annotations
 
 import contextlib
+import pathlib
 import struct
 import threading
 import time
@@ -29,6 +33,32 @@ def live_server(app, timeout_s: float = 30.0):
     finally:
         server.should_exit = True
         thread.join(timeout_s)
+
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMEDRIVER = "/usr/bin/chromedriver"
+
+
+def chromium(download_dir: pathlib.Path | None = None, size=(1280, 900)):
+    """Debian's chromium, headless, driven by Selenium; downloads go to ``download_dir``.
+
+    The driver's path is given, so Selenium Manager is not run and nothing is downloaded.
+    """
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = CHROMIUM
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu"):
+        opts.add_argument(arg)
+    opts.add_argument(f"--window-size={size[0]},{size[1]}")
+    if download_dir is not None:
+        prefs = {
+            "download.default_directory": str(download_dir),
+            "download.prompt_for_download": False,
+        }
+        opts.add_experimental_option("prefs", prefs)
+    return webdriver.Chrome(service=Service(executable_path=CHROMEDRIVER), options=opts)
 
 
 def _chunk(kind: bytes, data: bytes) -> bytes:

@@ -86,6 +86,7 @@ for (const type of ["pointerup", "pointercancel"]) {
 function useDrawing() {
   chosenFile = null;
   $("preview").hidden = true;
+  $("drop-hint").hidden = false;
   pad.hidden = false;
   $("input-name").textContent = "your drawing";
 }
@@ -105,6 +106,7 @@ function chooseFile(file) {
   if (preview.src) URL.revokeObjectURL(preview.src);
   preview.src = URL.createObjectURL(file);
   preview.hidden = false;
+  $("drop-hint").hidden = true;
   pad.hidden = true;
   $("input-name").textContent = `${file.name} (${formatBytes(file.size)})`;
   plan();
@@ -368,7 +370,7 @@ function startAnimation(p) {
   const { moves, total } = timeline(p.data.strokes);
   const n = p.data.strokes.length;
   const box = cropBox(p.data);
-  const side = 560;
+  const side = 480;
   const k = side / Math.max(box[2] - box[0], box[3] - box[1]);
   view.width = Math.max(1, Math.round((box[2] - box[0]) * k));
   view.height = Math.max(1, Math.round((box[3] - box[1]) * k));

@@ -6,6 +6,9 @@ import concurrent.futures
 import json
 import os
 import pathlib
+import socket
+import subprocess
+import sys
 import threading
 import time
 
@@ -274,3 +277,30 @@ def test_upload_decodes_as_the_command_line(tmp_path):
     np.testing.assert_array_equal(upload.decode(data), load.load_image(path))
     with pytest.raises(load.ImageError, match="'mine.png'"):
         upload.decode(b"\x89PNG\r\n\x1a\n" + b"\0" * 40, "mine.png")
+
+
+def test_jdraw_serve_listens_on_loopback_and_answers():
+    """The command itself: starts, serves the page and the API on 127.0.0.1, stops on SIGTERM."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    cmd = [sys.executable, "-m", "jdraw.cli", "serve", "--port", str(port), "--no-warm-up"]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    server = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
+    try:
+        url = f"http://127.0.0.1:{port}"
+        deadline = time.monotonic() + 120
+        while True:
+            try:
+                page = httpx.get(url, timeout=5)
+                break
+            except httpx.TransportError:
+                assert server.poll() is None and time.monotonic() < deadline, "did not start"
+                time.sleep(0.2)
+        assert page.status_code == 200 and "jdraw" in page.text
+        r = httpx.post(f"{url}/api/plan", files={"image": ("a.txt", b"no", "text/plain")})
+        assert r.status_code == 400 and "not an image" in r.json()["error"]
+    finally:
+        server.terminate()
+        _, err = server.communicate(timeout=30)
+    assert f"http://127.0.0.1:{port}/" in err

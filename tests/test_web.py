@@ -77,7 +77,8 @@ def traced(monkeypatch):
 
 def test_kanji_plan_is_what_jdraw_draw_writes(tmp_path):
     """The bundled model through the API and through the command: the same bytes."""
-    client = TestClient(web_app.create_app())
+    # The first plan compiles the model: a time limit a shared CPU cannot trip.
+    client = TestClient(web_app.create_app(web_app.Limits(plan_timeout_s=3600)))
     data = KANJI.read_bytes()
     out = {f: tmp_path / f"cli.{f}" for f in ("json", "svg", "gcode")}
     argv = ["draw", str(KANJI), "--no-progress", "--width-mm", "150", "--preset", "servo"]
@@ -129,7 +130,9 @@ def test_byte_limit_is_413(traced):
     data = _png(_lines(1, size=300))
     limits = web_app.Limits(max_bytes=len(data) - 1)
     client = TestClient(web_app.create_app(limits))
-    assert "limit" in _error(_post(client, data), 413)
+    assert "limit" in _error(_post(client, data), 413)  # the image, after parsing the form
+    huge = data + bytes(200_000)  # refused from its Content-Length, before it is read
+    assert f"the limit is {len(data) - 1} bytes" in _error(_post(client, huge), 413)
     assert _post(client, _png(_lines(1, size=40))).status_code == 200
 
 

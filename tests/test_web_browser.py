@@ -31,7 +31,7 @@ import httpx  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 
-from jdraw.web.app import create_app  # noqa: E402
+from jdraw.web.app import Limits, create_app  # noqa: E402
 from tests.web_helpers import chromium, live_server  # noqa: E402
 
 # The first plan compiles the bundled model (about 30 s on 2 idle cores, more when shared).
@@ -57,7 +57,8 @@ def state(driver) -> str:
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
     downloads = tmp_path_factory.mktemp("downloads")
-    with live_server(create_app()) as url:
+    # The first plan compiles the model: a time limit a shared CPU cannot trip.
+    with live_server(create_app(Limits(plan_timeout_s=3600))) as url:
         driver = chromium(downloads)
         try:
             driver.get(url)

@@ -80,16 +80,22 @@ def _static_dir() -> str:
     return str(importlib.resources.files("jdraw.web") / "static")
 
 
-async def _read_body(request: Request, limit: int) -> bytes:
-    """The request body, refused with 413 as soon as it passes ``limit`` bytes."""
+async def _read_body(request: Request, max_bytes: int) -> bytes:
+    """The request body, refused with 413 as soon as it is clearly over ``max_bytes``.
+
+    The body may exceed ``max_bytes`` by the room the form's other fields and the
+    multipart boundaries take; the image itself is checked after parsing.
+    """
+    limit = max_bytes + _FORM_SLACK
+    too_big = f"the upload is over the limit of {max_bytes} bytes"
     length = request.headers.get("content-length")
     if length is not None and length.isdigit() and int(length) > limit:
-        raise HTTPError(413, f"the upload is {int(length)} bytes; the limit is {limit} bytes")
+        raise HTTPError(413, f"the upload is {int(length)} bytes; the limit is {max_bytes} bytes")
     chunks, size = [], 0
     async for chunk in request.stream():
         size += len(chunk)
         if size > limit:
-            raise HTTPError(413, f"the upload is over the limit of {limit} bytes")
+            raise HTTPError(413, too_big)
         chunks.append(chunk)
     return b"".join(chunks)
 
@@ -98,7 +104,7 @@ async def _form(request: Request, limits: Limits) -> tuple[bytes, str, dict[str,
     """``(image bytes, file name, other fields)`` of a multipart request."""
     if not request.headers.get("content-type", "").startswith("multipart/form-data"):
         raise HTTPError(400, "send the image as multipart/form-data in a field named 'image'")
-    body = await _read_body(request, limits.max_bytes + _FORM_SLACK)
+    body = await _read_body(request, limits.max_bytes)
     replay = [{"type": "http.request", "body": body, "more_body": False}]
 
     async def receive():

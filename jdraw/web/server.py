@@ -131,5 +131,10 @@ def main(args) -> int:
     app = create_app(limits, warm_up=not args.no_warm_up)
     shown = f"[{args.host}]" if ":" in args.host else args.host
     print(f"jdraw: serving http://{shown}:{args.port}/ (Ctrl-C stops)", file=sys.stderr)
+    if not args.no_warm_up:
+        print(
+            "jdraw: the model compiles in the background (about 30 s); plans wait for it",
+            file=sys.stderr,
+        )
     uvicorn.run(app, host=args.host, port=args.port, workers=1, log_level="warning")
     return 0

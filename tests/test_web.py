@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import concurrent.futures
+import contextlib
 import json
 import os
 import pathlib
@@ -30,8 +31,6 @@ else:
     starlette = pytest.importorskip("starlette")
     pytest.importorskip("uvicorn")
 
-from starlette.testclient import TestClient  # noqa: E402
-
 from jdraw.images import load  # noqa: E402
 from jdraw.web import app as web_app  # noqa: E402
 from jdraw.web import planning, upload  # noqa: E402
@@ -39,6 +38,14 @@ from jdraw.web import planning, upload  # noqa: E402
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 KANJI = ROOT / "examples" / "images" / "kanji.png"
 STATIC = ROOT / "jdraw" / "web" / "static"
+
+
+@contextlib.contextmanager
+def serving(limits: web_app.Limits | None = None):
+    """An HTTP client of the app served by uvicorn on a free loopback port."""
+    with live_server(web_app.create_app(limits)) as url:
+        with httpx.Client(base_url=url, timeout=600) as client:
+            yield client
 
 
 def _png(img: np.ndarray) -> bytes:
@@ -78,62 +85,64 @@ def traced(monkeypatch):
 def test_kanji_plan_is_what_jdraw_draw_writes(tmp_path):
     """The bundled model through the API and through the command: the same bytes."""
     # The first plan compiles the model: a time limit a shared CPU cannot trip.
-    client = TestClient(web_app.create_app(web_app.Limits(plan_timeout_s=3600)))
-    data = KANJI.read_bytes()
-    out = {f: tmp_path / f"cli.{f}" for f in ("json", "svg", "gcode")}
-    argv = ["draw", str(KANJI), "--no-progress", "--width-mm", "150", "--preset", "servo"]
-    argv += ["--feed", "2000", "--origin-mm", "10", "20"]
-    for f, p in out.items():
-        argv += [f"--{f}", str(p)]
-    assert cli.main(argv) == 0
-    fields = {"width-mm": "150", "preset": "servo", "feed": "2000", "origin-mm": "10 20"}
-    for f, p in out.items():
-        r = _post(client, data, "kanji.png", fmt=None if f == "json" else f, **fields)
-        assert r.status_code == 200, r.text
-        assert r.content == p.read_bytes(), f
-    assert r.headers["content-type"].startswith("text/plain")
-    plan = json.loads(out["json"].read_text())
-    assert plan["stats"]["strokes"] == len(plan["strokes"]) > 1 and plan["stats"]["units"] == "mm"
-    # Defaults: no field at all is `jdraw draw IMAGE --json OUT`.
-    assert cli.main(["draw", str(KANJI), "--no-progress", "--json", str(out["json"])]) == 0
-    r = _post(client, data, "kanji.png")
-    assert r.headers["content-type"] == "application/json"
-    assert r.content == out["json"].read_bytes()
-    assert json.loads(r.content)["strokes"] == plan["strokes"]
+    with serving(web_app.Limits(plan_timeout_s=3600)) as client:
+        data = KANJI.read_bytes()
+        out = {f: tmp_path / f"cli.{f}" for f in ("json", "svg", "gcode")}
+        argv = ["draw", str(KANJI), "--no-progress", "--width-mm", "150", "--preset", "servo"]
+        argv += ["--feed", "2000", "--origin-mm", "10", "20"]
+        for f, p in out.items():
+            argv += [f"--{f}", str(p)]
+        assert cli.main(argv) == 0
+        fields = {"width-mm": "150", "preset": "servo", "feed": "2000", "origin-mm": "10 20"}
+        for f, p in out.items():
+            r = _post(client, data, "kanji.png", fmt=None if f == "json" else f, **fields)
+            assert r.status_code == 200, r.text
+            assert r.content == p.read_bytes(), f
+        assert r.headers["content-type"].startswith("text/plain")
+        plan = json.loads(out["json"].read_text())
+        assert (
+            plan["stats"]["strokes"] == len(plan["strokes"]) > 1 and plan["stats"]["units"] == "mm"
+        )
+        # Defaults: no field at all is `jdraw draw IMAGE --json OUT`.
+        assert cli.main(["draw", str(KANJI), "--no-progress", "--json", str(out["json"])]) == 0
+        r = _post(client, data, "kanji.png")
+        assert r.headers["content-type"] == "application/json"
+        assert r.content == out["json"].read_bytes()
+        assert json.loads(r.content)["strokes"] == plan["strokes"]
 
 
 def test_user_errors_are_400_with_one_line(traced):
-    client = TestClient(web_app.create_app())
-    good = _png(_lines(0))
-    assert "not an image" in _error(_post(client, b"hello, world\n" * 20, "a.txt"), 400)
-    bad_png = b"\x89PNG\r\n\x1a\n" + b"\0" * 40
-    assert _error(_post(client, bad_png, "bad.png"), 400)
-    broken = good[: len(good) // 2]  # a real header, half the data
-    assert "broken.png" in _error(_post(client, broken, "broken.png"), 400)
-    blank = _png(np.full((60, 80), 250, np.uint8))
-    assert "nothing to draw" in _error(_post(client, blank), 400)
-    assert "width-mm" in _error(_post(client, good, **{"width-mm": "-3"}), 400)
-    assert "width-mm" in _error(_post(client, good, **{"width-mm": "wide"}), 400)
-    assert "preset" in _error(_post(client, good, preset="laser"), 400)
-    assert "pen-up" in _error(_post(client, good, **{"pen-up": "G0 Z{oops}"}), 400)
-    assert "origin-mm" in _error(_post(client, good, **{"origin-mm": "1"}), 400)
-    assert "colour" in _error(_post(client, good, colour="red"), 400)
-    assert "format" in _error(_post(client, good, fmt="pdf"), 400)
-    assert "image" in _error(client.post("/api/plan", data={"preset": "servo"}), 400)
-    assert "multipart" in _error(client.post("/api/plan", content=good), 400)
-    # The same image with good options still plans: nothing above broke the server.
-    r = _post(client, good, fmt="svg", **{"width-mm": "80", "height_mm": ""})
-    assert r.status_code == 200 and 'width="80mm"' in r.text, r.text[:300]
+    with serving() as client:
+        good = _png(_lines(0))
+        assert "not an image" in _error(_post(client, b"hello, world\n" * 20, "a.txt"), 400)
+        bad_png = b"\x89PNG\r\n\x1a\n" + b"\0" * 40
+        assert _error(_post(client, bad_png, "bad.png"), 400)
+        broken = good[: len(good) // 2]  # a real header, half the data
+        assert "broken.png" in _error(_post(client, broken, "broken.png"), 400)
+        blank = _png(np.full((60, 80), 250, np.uint8))
+        assert "nothing to draw" in _error(_post(client, blank), 400)
+        assert "width-mm" in _error(_post(client, good, **{"width-mm": "-3"}), 400)
+        assert "width-mm" in _error(_post(client, good, **{"width-mm": "wide"}), 400)
+        assert "preset" in _error(_post(client, good, preset="laser"), 400)
+        assert "pen-up" in _error(_post(client, good, **{"pen-up": "G0 Z{oops}"}), 400)
+        assert "origin-mm" in _error(_post(client, good, **{"origin-mm": "1"}), 400)
+        assert "colour" in _error(_post(client, good, colour="red"), 400)
+        assert "format" in _error(_post(client, good, fmt="pdf"), 400)
+        assert "image" in _error(client.post("/api/plan", data={"preset": "servo"}), 400)
+        assert "multipart" in _error(client.post("/api/plan", content=good), 400)
+        # The same image with good options still plans: nothing above broke the server.
+        r = _post(client, good, fmt="svg", **{"width-mm": "80", "height_mm": ""})
+        assert r.status_code == 200 and 'width="80mm"' in r.text, r.text[:300]
 
 
 def test_byte_limit_is_413(traced):
     data = _png(_lines(1, size=300))
     limits = web_app.Limits(max_bytes=len(data) - 1)
-    client = TestClient(web_app.create_app(limits))
-    assert "limit" in _error(_post(client, data), 413)  # the image, after parsing the form
-    huge = data + bytes(200_000)  # refused from its Content-Length, before it is read
-    assert f"the limit is {len(data) - 1} bytes" in _error(_post(client, huge), 413)
-    assert _post(client, _png(_lines(1, size=40))).status_code == 200
+    with serving(limits) as client:
+        assert "limit" in _error(_post(client, data), 413)  # the image, after parsing the form
+        huge = data + bytes(200_000)  # refused from its Content-Length, before it is read
+        assert f"the limit is {len(data) - 1} bytes" in _error(_post(client, huge), 413)
+        assert _post(client, _png(_lines(1, size=40))).status_code == 200
 
 
 def test_pixel_limit_is_413_before_decoding(traced, monkeypatch):
@@ -141,14 +150,14 @@ def test_pixel_limit_is_413_before_decoding(traced, monkeypatch):
         raise AssertionError("an image over the pixel limit was decoded")
 
     monkeypatch.setattr(load, "load_image", no_decoding)
-    client = TestClient(web_app.create_app())
-    bomb = bomb_png(20000, 20000)
-    assert len(bomb) < 100_000  # 400 Mpx in a small file: only its header may be read
-    assert "400000000 pixels" in _error(_post(client, bomb, "bomb.png"), 413)
-    under_pillow_guard = bomb_png(8000, 8000)  # 64 Mpx: over ours, under Pillow's own
-    assert "8000 x 8000" in _error(_post(client, under_pillow_guard), 413)
-    small = web_app.create_app(web_app.Limits(max_pixels=120 * 120 - 1))
-    assert "120 x 120" in _error(_post(TestClient(small), _png(_lines(2))), 413)
+    with serving() as client:
+        bomb = bomb_png(20000, 20000)
+        assert len(bomb) < 100_000  # 400 Mpx in a small file: only its header may be read
+        assert "400000000 pixels" in _error(_post(client, bomb, "bomb.png"), 413)
+        under_pillow_guard = bomb_png(8000, 8000)  # 64 Mpx: over ours, under Pillow's own
+        assert "8000 x 8000" in _error(_post(client, under_pillow_guard), 413)
+    with serving(web_app.Limits(max_pixels=120 * 120 - 1)) as small:
+        assert "120 x 120" in _error(_post(small, _png(_lines(2))), 413)
 
 
 def test_header_size_reads_only_the_header():
@@ -169,10 +178,10 @@ def test_plan_over_the_time_limit_is_503_and_the_server_stays_up(monkeypatch):
 
     monkeypatch.setattr(planning, "_clock", lambda: time.monotonic() + lost["s"])
     monkeypatch.setattr(tiling, "default_planner", slow)
-    client = TestClient(web_app.create_app(web_app.Limits(plan_timeout_s=30.0)))
-    assert "limit" in _error(_post(client, _png(_lines(3))), 503)
-    monkeypatch.setattr(tiling, "default_planner", trace_planner)
-    assert _post(client, _png(_lines(4))).status_code == 200
+    with serving(web_app.Limits(plan_timeout_s=30.0)) as client:
+        assert "limit" in _error(_post(client, _png(_lines(3))), 503)
+        monkeypatch.setattr(tiling, "default_planner", trace_planner)
+        assert _post(client, _png(_lines(4))).status_code == 200
 
 
 def test_a_bug_is_500_and_the_server_stays_up(monkeypatch):
@@ -180,10 +189,10 @@ def test_a_bug_is_500_and_the_server_stays_up(monkeypatch):
         raise RuntimeError("boom")
 
     monkeypatch.setattr(tiling, "default_planner", broken)
-    client = TestClient(web_app.create_app(), raise_server_exceptions=False)
-    assert "RuntimeError: boom" in _error(_post(client, _png(_lines(5))), 500)
-    monkeypatch.setattr(tiling, "default_planner", trace_planner)
-    assert _post(client, _png(_lines(5))).status_code == 200
+    with serving() as client:
+        assert "RuntimeError: boom" in _error(_post(client, _png(_lines(5))), 500)
+        monkeypatch.setattr(tiling, "default_planner", trace_planner)
+        assert _post(client, _png(_lines(5))).status_code == 200
 
 
 def _counting(planner, delay_s: float):
@@ -245,18 +254,20 @@ def test_a_full_queue_is_503_and_the_rest_are_served(monkeypatch):
 
 
 def test_page_is_served_from_the_package_and_needs_no_network():
-    client = TestClient(web_app.create_app())
-    page = client.get("/")
-    assert page.status_code == 200 and "text/html" in page.headers["content-type"]
-    for name in ("app.js", "style.css"):
-        assert f"/static/{name}" in page.text
-        assert client.get(f"/static/{name}").status_code == 200
-    for path in STATIC.iterdir():  # no CDN, no remote font: it works offline
-        text = path.read_text()
-        assert "http://" not in text and "https://" not in text and "//cdn" not in text, path
-    opts = client.get("/api/options").json()
-    assert opts["presets"] == ["servo", "servo-s", "zaxis"]
-    assert opts["limits"]["max_bytes"] == 20_000_000 and opts["limits"]["max_pixels"] == 50_000_000
+    with serving() as client:
+        page = client.get("/")
+        assert page.status_code == 200 and "text/html" in page.headers["content-type"]
+        for name in ("app.js", "style.css"):
+            assert f"/static/{name}" in page.text
+            assert client.get(f"/static/{name}").status_code == 200
+        for path in STATIC.iterdir():  # no CDN, no remote font: it works offline
+            text = path.read_text()
+            assert "http://" not in text and "https://" not in text and "//cdn" not in text, path
+        opts = client.get("/api/options").json()
+        assert opts["presets"] == ["servo", "servo-s", "zaxis"]
+        assert (
+            opts["limits"]["max_bytes"] == 20_000_000 and opts["limits"]["max_pixels"] == 50_000_000
+        )
 
 
 def test_serve_flags(capsys):

@@ -106,15 +106,18 @@ def test_draw_plan_watch_download(page, tmp_path):
     assert shown == str(answer["stats"]["strokes"]) == str(len(answer["strokes"]))
     assert driver.find_element(By.ID, "stat-down").text.endswith(" px")
 
-    # The SVG downloaded is `jdraw draw`'s for the same picture.
-    driver.find_element(By.ID, "dl-svg").click()
-    svg = downloads / "drawing.svg"
-    wait_for(driver, lambda d: svg.exists() and svg.stat().st_size > 0, 30, "the download")
+    # The files downloaded are `jdraw draw`'s for the same picture.
     source = tmp_path / "drawing.png"
     source.write_bytes(png)
-    want = tmp_path / "cli.svg"
-    assert cli.main(["draw", str(source), "--no-progress", "--svg", str(want)]) == 0
-    assert svg.read_bytes() == want.read_bytes()
+    argv = ["draw", str(source), "--no-progress"]
+    for ext in ("svg", "gcode", "json"):
+        argv += [f"--{ext}", str(tmp_path / f"cli.{ext}")]
+    assert cli.main(argv) == 0
+    for ext in ("svg", "gcode", "json"):
+        driver.find_element(By.ID, f"dl-{ext}").click()
+        got = downloads / f"drawing.{ext}"
+        wait_for(driver, lambda d, f=got: f.exists() and f.stat().st_size > 0, 30, got.name)
+        assert got.read_bytes() == (tmp_path / f"cli.{ext}").read_bytes(), ext
 
     # A width in mm changes the statistics and the files, not the plan.
     width = driver.find_element(By.NAME, "width-mm")

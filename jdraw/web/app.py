@@ -114,26 +114,29 @@ async def _form(request: Request, limits: Limits) -> tuple[bytes, str, dict[str,
         form = await Request(request.scope, receive).form(max_files=1, max_fields=64)
     except MultiPartException as e:
         raise HTTPError(400, f"bad multipart form: {e}") from None
-    fields: dict[str, str] = {}
-    image = None
-    for key, value in form.multi_items():
-        if key == "image":
-            if not isinstance(value, UploadFile):
-                raise HTTPError(400, "the 'image' field must be a file")
-            image = value
-        elif key in fields:
-            raise HTTPError(400, f"field {key!r} given twice")
-        else:
-            fields[key] = value
-    if image is None:
-        raise HTTPError(400, "no image: send the picture in a file field named 'image'")
-    data = await image.read()
-    await form.close()
+    try:
+        fields: dict[str, str] = {}
+        image = None
+        for key, value in form.multi_items():
+            if key == "image":
+                if not isinstance(value, UploadFile):
+                    raise HTTPError(400, "the 'image' field must be a file")
+                image = value
+            elif key in fields:
+                raise HTTPError(400, f"field {key!r} given twice")
+            else:
+                fields[key] = value
+        if image is None:
+            raise HTTPError(400, "no image: send the picture in a file field named 'image'")
+        data = await image.read()
+        name = image.filename or "image"
+    finally:
+        await form.close()  # the spooled upload
     if len(data) > limits.max_bytes:
         raise HTTPError(413, f"the image is {len(data)} bytes; the limit is {limits.max_bytes}")
     if not data:
         raise HTTPError(400, "the image file is empty")
-    return data, image.filename or "image", fields
+    return data, name, fields
 
 
 def create_app(limits: Limits | None = None, *, warm_up: bool = False) -> Starlette:

@@ -208,6 +208,9 @@ def _parser() -> argparse.ArgumentParser:
         metavar=("X", "Y"),
         help="machine position of the drawing's bottom-left corner (default: 0 0)",
     )
+    from jdraw.web import server  # `jdraw serve`; imports the web stack only when it runs
+
+    server.add_parser(sub)
     return p
 
 
@@ -357,6 +360,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "draw":
             return _draw(args)
+        if args.command == "serve":
+            from jdraw.web import server
+
+            return server.main(args)
         return 2
     except (validate.InputError, load.ImageError, bundle.BundleError) as e:
         if debug:

@@ -76,12 +76,21 @@ def is_lead() -> bool:
     return jax.process_index() == 0
 
 
-def barrier(name: str) -> None:
-    """Waits until every process reaches here (no-op with one process)."""
-    if jax.process_count() > 1:
-        from jax.experimental import multihost_utils
+BARRIER_TIMEOUT_S = 24 * 3600  # process 0 may trace a splitter's examples for many minutes
 
-        multihost_utils.sync_global_devices(name)
+
+def barrier(name: str) -> None:
+    """Waits until every process reaches here (no-op with one process); ``name`` is unique.
+
+    A barrier of the coordination service, which waits up to ``BARRIER_TIMEOUT_S``:
+    a collective (``multihost_utils.sync_global_devices``) gives up when gloo's
+    context has waited 30 s for a process busy elsewhere.
+    """
+    if jax.process_count() > 1:
+        import orbax.checkpoint as ocp
+
+        every = set(range(jax.process_count()))  # named: the service's barrier, not gloo's
+        ocp.multihost.sync_global_processes(name, timeout=BARRIER_TIMEOUT_S, processes=every)
 
 
 def global_array(x: np.ndarray, sharding) -> jax.Array:

@@ -108,6 +108,8 @@ def train(
     val_idx = kanji.split_indices(ks, "val")[: cfg.eval.val_chars]
 
     graphdef, tx, state = create_state(cfg)
+    # Processes start together: Orbax's and the step's collectives wait 30 s at most.
+    distributed.barrier(f"jdraw.train.loop start {workdir}")
     mesh = feed.data_mesh()
     mgr = records.manager(workdir)
     start, counts = 0, {"strokes_seen": 0, "global_seen": 0, "wall_time_s": 0.0}
@@ -162,6 +164,8 @@ def train(
                         f"step {step}: val pixel {v['pixel_acc']:.4f} stroke {v['stroke_acc']:.4f}"
                     )
                 rates.t = time.time()
+            if due:
+                distributed.barrier(f"jdraw.train.loop val {workdir} {step}")
             if step % cfg.train.checkpoint_every == 0 and step < end:
                 records.save(mgr, step, state, counts, cfg)
     finally:

@@ -1,8 +1,8 @@
 """Evaluates a checkpoint on KanjiVG as the paper's §IV-A.
 
-  python eval.py --name beyond_robust --n 1   # the bundled default
+  python eval.py --name beyond_lean_reach --n 1   # the bundled default
   python eval.py --checkpoint jdraw/checkpoints/paper --name beyond_paper \
-      --ranker jdraw/checkpoints/ours
+      --ranker jdraw/checkpoints/default
   python eval.py --checkpoint jdraw/checkpoints/paper --name paper --nocanonicalise \
       --variants=   # Table I, row 1, as measured
 

@@ -26,7 +26,7 @@ ROWS = (
     ("ours", "model", "ours: whole-canvas start model, as traced"),
     ("ours", "xy", "ours, strokes sorted by start x + y"),
     ("ours", "ranker", "ours + learned stroke ranker"),
-    ("fast_local", "ranker", "ours, smaller local model (configs/fast_local.py) + ranker"),
+    ("fast_local", "ranker", "ours, smaller local model (fast_local, retired) + ranker"),
     (
         "robust",
         "model",
@@ -59,7 +59,7 @@ ROWS = (
     (
         "lean_reach",
         "model",
-        "ours, lean + splitter that also joins ends through the ink (configs/splitter_reach.py); "
+        "ours, lean + splitter that also joins ends through the ink (configs/default.py); "
         "as traced",
     ),
     ("lean_reach", "ranker", "ours, lean + that splitter + ranker (bundled default)"),

@@ -208,7 +208,7 @@ def stream_plan(
     Each device takes a contiguous part of the images, padded to a
     power-of-two queue, and streams it through ``width`` slots.
     """
-    devices = tuple(devices or jax.devices())
+    devices = tuple(devices or jax.local_devices())  # this process's: plans are host-local
     d = len(devices)
     b = len(targets)
     per = -(-b // d)
@@ -275,7 +275,7 @@ def plan(
       loop: ``"slots"`` (default; see :mod:`jdraw.planner.slots`) or ``"vmap"`` (the
         old loop, every image waiting for the batch's longest stroke); same
         actions.
-      devices: the JAX devices the slot batch is spread over (default all).
+      devices: the JAX devices the slot batch is spread over (default all of this process's).
       join: join a stroke to the one that goes on from its end through a
         junction (:mod:`jdraw.planner.joins`); ``None``: as the checkpoint says
         (:func:`planner_settings`; the paper's model does not).

@@ -280,7 +280,7 @@ def load(bundle_dir) -> Splitter | None:
             raise bundle.BundleError(
                 f"{pathlib.Path(bundle_dir) / 'splitter.json'}: made for {sizes} corner and "
                 f"join features, this jdraw computes {want}; retrain it "
-                "(configs/splitter_lean.py)"
+                "(configs/default.py, stage splitter)"
             )
         return Splitter(int(meta.get("hidden", 64)), patches, reach, rngs=nnx.Rngs(0))
 

@@ -16,7 +16,7 @@ from jax.sharding import Mesh, NamedSharding
 from jax.sharding import PartitionSpec as P
 
 from jdraw.data import batches, variants
-from jdraw.train import global_only
+from jdraw.train import distributed, global_only
 
 
 def make_batch(ks, pool, cfg, step: int) -> tuple[dict, int]:
@@ -67,11 +67,13 @@ def data_mesh() -> Mesh:
 
 
 def shard_batch(batch: dict, mesh: Mesh) -> dict:
-    """Places every array with its leading (batch) axis split over the mesh."""
+    """Places every array with its leading (batch) axis split over all processes' devices."""
 
     def put(x):
         x = np.asarray(x)
         spec = P("data") if x.ndim and x.shape[0] % mesh.size == 0 else P()
+        if jax.process_count() > 1:  # every process holds the whole batch and places its part
+            return distributed.global_array(x, NamedSharding(mesh, spec))
         return jax.device_put(x, NamedSharding(mesh, spec))
 
     return jax.tree.map(put, batch)

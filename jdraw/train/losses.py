@@ -123,7 +123,7 @@ def total_loss(model: M.DrawModel, batch: dict, global_weight: float):
     """The loss of a :func:`jdraw.train.feed.make_batch` batch and its logs.
 
     A batch holds ``global_only`` (ablation c), or ``global`` alone (only the
-    start model trains, ``configs/ours.py``), or ``local`` and ``global``.
+    start model trains, stage ``start`` of ``configs/default.py``), or ``local`` and ``global``.
     """
     if "global_only" in batch:
         loss, logs = global_only_loss(model, batch["global_only"])

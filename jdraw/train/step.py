@@ -39,7 +39,7 @@ def init_from_bundle(model: M.DrawModel, bundle_dir) -> int:
     """Copies every array of a bundle that ``model`` has (same path and shape).
 
     Used to train a new global model beside a trained local model
-    (``configs/ours.py``). Returns the number of arrays copied.
+    (the start stage of ``configs/default.py``). Returns the number of arrays copied.
     """
     with np.load(pathlib.Path(bundle_dir) / "params.npz") as z:
         arrays = {k: z[k] for k in z.files}

@@ -1,0 +1,169 @@
+"""The bundled default planner (jdraw/checkpoints/default), all its stages in one config.
+
+Command (every stage in order, each resumable; stages already done are skipped):
+  python train.py --config configs/default.py --workdir runs/default
+  python train.py --config configs/default.py:tiny --workdir /tmp/jdraw-default-tiny  # tests
+
+Writes runs/default/bundle, laid out as jdraw/checkpoints/default, which
+``jdraw.plan(images, checkpoint="runs/default/bundle")`` loads. The stages
+(``stage_order``), each in its own folder of the workdir:
+
+1. ``local``: the local model (8/16/32-channel window encoder, 128-wide LSTM)
+   trained from scratch on the paper's budget (3,600 steps, about 100,000
+   strokes) of characters drawn five ways: jdraw's own lines (40%), OpenCV's
+   1-pixel and anti-aliased lines and 3- and 5-pixel pens (15% each),
+   canonicalised as ``jdraw.plan`` canonicalises its input. Adam 1e-3 with a
+   cosine decay to 1e-4. Its start model does not train (weight 0).
+2. ``start``: the whole-canvas start model, a U-Net at half resolution (16, 32,
+   64 channels), trained beside the local model of stage 1, which does not move:
+   1,500 steps of 32 stroke starts.
+3. ``splitter``: the tracer (stage 2's bundle) plans 9,000 training characters
+   drawn the same five ways; two small MLPs learn where a drawn stroke should
+   be cut and which stroke ends are one stroke, also ends up to 8 px apart
+   linked through the ink (jdraw.train.splitter, jdraw.planner.splits).
+4. ``ranker``: the tracer plans 600 more characters (and 2,500 give KanjiVG's
+   own strokes); the ranker learns KanjiVG's order and direction of its strokes
+   (jdraw.train.ranker, jdraw.planner.ranker).
+
+A string ``"stage:NAME"`` in a stage's config is ``WORKDIR/NAME/bundle``.
+These are the configs the bundled default was trained with, flattened (they
+were configs/lean.py, lean_start.py, splitter_reach.py and ranker_lean.py; the
+bundle's json files keep them, and tests/test_pipeline.py compares them).
+
+Wall time on the 2-core CPU: about 51 min, the sum of the stages' recorded
+times (training loops 2,105 s and 298 s, tracing and fits about 586 s and
+68 s; the bundle's json files), not one fresh run of this command; loading,
+compiling and validation add a few minutes. The tiny variant: about a minute.
+Result: README.md ("Beyond the paper") and docs/results.md.
+"""
+
+import ml_collections
+
+STYLES = dict(clean=0.4, cv2=0.15, aa=0.15, px3=0.15, px5=0.15)  # drawing mix (jdraw.data.variants)
+
+
+def local() -> ml_collections.ConfigDict:
+    c = ml_collections.ConfigDict()
+    c.name = "default/local"
+    c.seed = 0
+    c.model = ml_collections.ConfigDict(
+        dict(
+            hidden=128,
+            core="lstm",
+            extraction="late",
+            kind="two_scale",
+            global_net="unet",
+            start_widths=(8, 16, 32, 64),  # untrained here; stage "start" replaces it
+            start_full_res_convs=0,
+            blocks=((8, 8), (8, 16), (16, 16), (16, 32)),
+        )
+    )
+    c.data = ml_collections.ConfigDict(dict(augment=1.0, styles=dict(STYLES)))
+    c.train = ml_collections.ConfigDict(
+        dict(
+            learning_rate=1e-3,
+            final_lr_fraction=0.1,
+            windows=512,  # encoder windows (local steps) per batch
+            strokes=64,  # stroke slots per batch (LSTM rows)
+            max_len=96,  # local steps per stroke
+            strokes_per_char=4,
+            train_local=True,
+            global_batch=1,
+            global_per_char=1,
+            global_weight=0.0,
+            init_from="",
+            num_steps=3600,
+            log_every=20,
+            checkpoint_every=100,
+        )
+    )
+    c.eval = ml_collections.ConfigDict(dict(every=500, val_chars=48))
+    c.planner = ml_collections.ConfigDict(dict(join=True))
+    return c
+
+
+def start() -> ml_collections.ConfigDict:
+    c = local()
+    c.name = "default/start"
+    c.model.start_widths = (16, 32, 64)
+    c.model.start_half_res = True
+    c.train.update(
+        dict(
+            init_from="stage:local",
+            train_local=False,
+            global_batch=32,
+            global_per_char=4,
+            global_weight=1.0,
+            num_steps=1500,
+        )
+    )
+    return c
+
+
+def splitter() -> ml_collections.ConfigDict:
+    c = ml_collections.ConfigDict()
+    c.name = "default/splitter"
+    c.stage = "splitter"
+    c.seed = 0
+    c.tracer = "stage:start"
+    c.out = "stage:splitter"
+    c.chars = 9000
+    c.chunk = 100
+    c.augment = 1.0
+    c.styles = dict(STYLES)
+    c.patches = False  # the nets see each corner's and join's geometry only
+    c.reach = 8  # pixels: ends linked through the ink (jdraw.planner.joins.REACH)
+    c.hidden = 64
+    c.steps = 3000
+    c.batch = 512
+    c.learning_rate = 3e-3
+    return c
+
+
+def ranker() -> ml_collections.ConfigDict:
+    c = ml_collections.ConfigDict()
+    c.name = "default/ranker"
+    c.stage = "ranker"
+    c.seed = 0
+    c.tracer = "stage:start"
+    c.out = "stage:ranker"
+    c.chars = 600
+    c.demo_chars = 2500
+    c.chunk = 100
+    c.augment = 1.0
+    c.styles = dict(STYLES)
+    c.steps = 4000
+    c.batch = 512
+    c.learning_rate = 3e-3
+    return c
+
+
+def tiny(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """Every stage on a budget of seconds: the pipeline's test, not a usable planner."""
+    for name in ("local", "start"):
+        s = c.stages[name]
+        s.model.update(hidden=16, blocks=((4, 4), (4, 8), (8, 8), (8, 8)))
+        s.train.update(windows=32, strokes=4, num_steps=4, log_every=2, checkpoint_every=2)
+        s.eval.update(every=0, val_chars=0)
+    c.stages.local.model.start_widths = (4, 8)
+    c.stages.start.model.start_widths = (4, 8)
+    c.stages.start.train.update(global_batch=2, global_per_char=2)
+    for name in ("splitter", "ranker"):
+        c.stages[name].update(chars=4, chunk=4, steps=20, batch=32)
+    c.stages.ranker.demo_chars = 4
+    return c
+
+
+def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
+    c = ml_collections.ConfigDict()
+    c.name = "default"
+    c.stage_order = ("local", "start", "splitter", "ranker")
+    c.stages = ml_collections.ConfigDict(
+        dict(local=local(), start=start(), splitter=splitter(), ranker=ranker())
+    )
+    if variant == "tiny":
+        c.name = "default_tiny"
+        return tiny(c)
+    if variant:
+        raise ValueError(f"configs/default.py: unknown variant {variant!r} (tiny or none)")
+    return c

@@ -60,3 +60,38 @@ def test_glyphs_become_demonstrations_inside_the_canvas():
         # of the scaled point).
         first = latin.to_canvas(latin.GLYPHS[g])[0][0]
         assert np.abs(d.strokes[0][0] - first).max() <= 1.0, g
+
+
+def test_extra_sets_leave_kanjivg_chunks_as_they_were(kanji_set):
+    import ml_collections
+
+    from jdraw.data import kanji
+    from jdraw.train import ranker as ranker_train
+
+    cfg = ml_collections.ConfigDict(
+        {"seed": 0, "chunk": 3, "chars": 6, "demo_chars": 3, "augment": 1.0, "extra": {"latin": 4}}
+    )
+    jobs = ranker_train.chunk_jobs(cfg)
+    assert jobs == [
+        ("kanji", "demo", 0),
+        ("kanji", "traced", 0),
+        ("kanji", "traced", 1),
+        ("latin", "traced", 0),
+        ("latin", "traced", 1),
+    ]
+    import pathlib
+
+    w = pathlib.Path("w")
+    assert ranker_train.chunk_path(w, "kanji", "traced", 1).name == "traced_0001.npz"
+    assert ranker_train.chunk_path(w, "latin", "traced", 1).name == "traced_latin_0001.npz"
+    # KanjiVG's draws are those of the seed it always had; another set's are salted apart.
+    pool = kanji.split_indices(kanji_set, "train")
+    demos, drawn = ranker_train.traced_chunk(cfg, kanji_set, pool, "demo", 0)
+    rng = np.random.default_rng([0, 0, 1])
+    ref = [demo.sample(kanji_set, int(rng.choice(pool)), rng, 1.0) for _ in range(3)]
+    for d, r in zip(demos, ref):
+        np.testing.assert_array_equal(d.target, r.target)
+    ks, lpool = mix.load("latin")
+    a, _ = ranker_train.traced_chunk(cfg, ks, lpool, "demo", 0, salt=mix.salt("latin"))
+    b, _ = ranker_train.traced_chunk(cfg, ks, lpool, "demo", 0)
+    assert any(not np.array_equal(x.target, y.target) for x, y in zip(a, b))

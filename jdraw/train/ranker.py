@@ -115,7 +115,8 @@ def traced_chunk(cfg, ks, pool, kind: str, k: int, salt: int = 0):
     and planned by ``cfg.tracer`` (its own noisy strokes); ``"demo"``: KanjiVG's
     strokes as they are. ``salt`` (:func:`jdraw.data.mix.salt`) keeps another
     set's draws apart from KanjiVG's, which stay as they were; ``cfg.tracer_split``
-    lets the tracer's splitter cut and join its strokes first. Returns the
+    (``jdraw.plan``'s ``split=``: a bool, or a folder holding a splitter) cuts and
+    joins the tracer's strokes first. Returns the
     demonstrations and each one's strokes.
     """
     from jdraw.planner import plan as api
@@ -135,7 +136,7 @@ def traced_chunk(cfg, ks, pool, kind: str, k: int, salt: int = 0):
             targets,
             checkpoint=cfg.tracer,
             order="model",
-            split=bool(cfg.get("tracer_split", False)),
+            split=cfg.get("tracer_split", False),
         ).strokes
     else:
         drawn = [d.strokes for d in demos]

@@ -26,6 +26,11 @@ def main(argv):
 
         print(ranker_train.train(cfg, workdir))
         return
+    if cfg.get("stage") == "reading":
+        from jdraw.train import reading as reading_train
+
+        print(reading_train.train(cfg, workdir))
+        return
     if cfg.get("stage") == "splitter":
         from jdraw.train import splitter as splitter_train
 

@@ -127,6 +127,13 @@ def _parser() -> argparse.ArgumentParser:
         help="keep the strokes as the local model traced them: no learned cutting at corners "
         "and joining of ends (trained on kanji, it may cut a Latin e at its bar)",
     )
+    pl.add_argument(
+        "--direction",
+        choices=("auto", "ltr", "rtl"),
+        default="auto",
+        help="reading direction: rtl (Hebrew, Arabic script) orders letters and strokes right "
+        "to left; default: read from the image",
+    )
     pl.add_argument("--no-progress", action="store_true", help="no progress bar")
     pl.add_argument("--debug", action="store_true", help="on an error, show the Python traceback")
 
@@ -280,6 +287,7 @@ def _draw(args) -> int:
             min_gap=args.min_gap,
             progress=not args.no_progress,
             split=False if args.no_split else None,
+            direction=None if args.direction == "auto" else args.direction,
         )
     except load.BlankImageError as e:
         return _fail(f"{args.image}: {e}; nothing to draw")
@@ -331,6 +339,8 @@ def _draw(args) -> int:
         f"{'' if plot.units == 'mm' else ' (G-code 100 mm wide)'}, "
         f"{time.perf_counter() - t0:.1f} s"
     )
+    if result.direction == "rtl":
+        msg += ", read right to left"
     if result.truncated:
         msg += f"; {result.truncated} tile(s) hit --max-steps ({result.completed_pixels} px traced)"
     print(msg)

@@ -247,6 +247,7 @@ def plan(
     devices=None,
     join: bool | None = None,
     split: bool | str | os.PathLike | None = None,
+    direction: str = "ltr",
 ) -> Plan:
     """Plans how to draw each image.
 
@@ -284,6 +285,9 @@ def plan(
         learned splitter says (:mod:`jdraw.planner.splits`); ``None``: if the
         checkpoint has one; or a folder holding another splitter to use.
         ``True`` with a checkpoint that has none is an error.
+      direction: ``"ltr"`` or ``"rtl"``: the reading direction the ranker
+        orders strokes in (``"rtl"``: as for the mirrored image, see
+        :func:`jdraw.planner.ranker.reorder`); the strokes traced are the same.
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
@@ -300,6 +304,7 @@ def plan(
     limits = planner.Limits(max_steps=max_steps or planner.Limits.max_steps)
     validate.choice("local_encoding", local_encoding, ("window", "full"))
     validate.choice("loop", loop, ("slots", "vmap"))
+    validate.choice("direction", direction, ("ltr", "rtl"))
     batch_size = validate.positive_int("batch_size", batch_size)
     global_batch = validate.positive_int("global_batch", global_batch)
     model = load_model(validate.checkpoint(checkpoint))
@@ -338,7 +343,7 @@ def plan(
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"
-    return ranker.reorder(result, order, rk, max_rows=limits.max_steps)
+    return ranker.reorder(result, order, rk, max_rows=limits.max_steps, mirror=direction == "rtl")
 
 
 @functools.lru_cache(maxsize=4)

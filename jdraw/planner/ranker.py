@@ -25,6 +25,7 @@ import jax
 import numpy as np
 from flax import nnx
 
+from jdraw.geometry import CANVAS
 from jdraw.planner.stroke_tokens import (  # noqa: F401 (the ranker's inputs, named here too)
     PAIR_FEATURES,
     STROKE_FEATURES,
@@ -105,12 +106,29 @@ def order_strokes(ranker: Ranker, strokes) -> tuple[list[int], list[bool]]:
     return order_many(ranker, [strokes])[0]
 
 
-def order_many(ranker: Ranker, characters) -> list[tuple[list[int], list[bool]]]:
+def mirrored(strokes) -> list[np.ndarray]:
+    """Strokes mirrored left to right on the canvas (x -> 99 - x): how right-to-left script
+    looks to a ranker that learned left-to-right order."""
+    out = []
+    for s in strokes:
+        p = np.array(s, np.float64).reshape(-1, 2)
+        p[:, 0] = CANVAS - 1 - p[:, 0]
+        out.append(p)
+    return out
+
+
+def order_many(
+    ranker: Ranker, characters, mirror: bool = False
+) -> list[tuple[list[int], list[bool]]]:
     """:func:`order_strokes` for many characters, their strokes scored together.
 
     Every stroke and stroke pair is scored in calls of ``CHUNK`` rows, so a
     character's scores do not depend on the others it is batched with.
+    ``mirror``: rank the mirrored strokes (:func:`mirrored`), so the order
+    and directions run right to left; the result indexes the strokes given.
     """
+    if mirror:
+        characters = [mirrored(s) for s in characters]
     g, st = nnx.split(ranker)
     tks = [tokens(s) for s in characters]
     counts = [len(s) for s in characters]
@@ -211,7 +229,13 @@ def load(bundle_dir) -> Ranker | None:
 ORDERS = ("model", "ranker", "xy")
 
 
-def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | None = None):
+def reorder(
+    plan,
+    method: str,
+    ranker: Ranker | None = None,
+    max_rows: int | None = None,
+    mirror: bool = False,
+):
     """A :class:`jdraw.Plan` with each image's strokes reordered (and maybe flipped).
 
     Args:
@@ -221,6 +245,9 @@ def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | Non
       max_rows: where flipping an image's strokes would need more action rows
         than this (a reversed knight move takes two rows), its strokes are
         reordered but not flipped, so a plan keeps within its step bound.
+      mirror: order as for the image mirrored left to right (right-to-left
+        script): the ranker sees :func:`mirrored` strokes, ``"xy"`` sorts by
+        ``(99 - x) + y``.
     """
     from jdraw.plans import Plan
 
@@ -231,10 +258,11 @@ def reorder(plan, method: str, ranker: Ranker | None = None, max_rows: int | Non
     if method == "ranker" and ranker is None:
         raise ValueError("order='ranker' needs a ranker; this checkpoint has none")
     strokes = []
-    chosen = order_many(ranker, plan.strokes) if method == "ranker" else None
+    chosen = order_many(ranker, plan.strokes, mirror) if method == "ranker" else None
     for b, s in enumerate(plan.strokes):
         if method == "xy":
-            order = sorted(range(len(s)), key=lambda k: (s[k][0][0] + s[k][0][1], k))
+            x = [CANVAS - 1 - p[0][0] if mirror else p[0][0] for p in s]
+            order = sorted(range(len(s)), key=lambda k: (x[k] + s[k][0][1], k))
             strokes.append([s[k] for k in order])
         else:
             order, flip = chosen[b]

@@ -63,15 +63,20 @@ def choose_scale(prep: Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
     return (s_fit, True) if s_fit >= FIT_SLACK * s_min else (s_min, False)
 
 
-def _reading_order(boxes: Sequence[tuple[float, float, float, float]]) -> list[int]:
-    """Indices of ``boxes`` in reading order: text lines top to bottom, left to right.
+def text_lines(
+    boxes: Sequence[tuple[float, float, float, float]],
+) -> tuple[np.ndarray, list[tuple[float, float]]]:
+    """Text lines of ``boxes`` ``(x0, y0, x1, y1)``: each box's line and the lines' spans.
 
-    Tall boxes define the lines; a small box (an i's dot, a comma) joins the
-    line whose vertical span is nearest its centre.
+    Tall boxes (at least half the median height) define the lines; a small box
+    (an i's dot, a comma) joins the line whose vertical span is nearest its centre.
+
+    Returns:
+      ``(line_of [n] int, spans)``: lines numbered top to bottom, ``spans[k] = (y0, y1)``.
     """
-    if not boxes:
-        return []
-    b = np.asarray(boxes, np.float64)
+    b = np.asarray(boxes, np.float64).reshape(-1, 4)
+    if not len(b):
+        return np.zeros(0, int), []
     heights = b[:, 3] - b[:, 1] + 1
     tall = heights >= 0.5 * np.median(heights)
     lines: list[list[float]] = []  # [y0, y1]
@@ -89,13 +94,54 @@ def _reading_order(boxes: Sequence[tuple[float, float, float, float]]) -> list[i
     centre_y = (b[:, 1] + b[:, 3]) / 2
     spans = np.asarray(lines)
     gap = np.maximum(spans[None, :, 0] - centre_y[:, None], centre_y[:, None] - spans[None, :, 1])
-    line_of = np.argmin(gap, axis=1)
+    return np.argmin(gap, axis=1), [(float(a), float(c)) for a, c in lines]
+
+
+def _reading_order(
+    boxes: Sequence[tuple[float, float, float, float]], rtl: bool = False
+) -> list[int]:
+    """Indices of ``boxes`` in reading order: text lines top to bottom, along each line.
+
+    Along a line boxes go left to right, or right to left if ``rtl``. A mark
+    (a small box, as :func:`text_lines` says, whose centre lies over or under
+    a tall box of its line: an i's dot, an accent, Arabic dots) comes right
+    after that letter body, as people write; if several bodies span it, the
+    nearest.
+    """
+    if not boxes:
+        return []
+    b = np.asarray(boxes, np.float64)
+    line_of, _ = text_lines(boxes)
+    heights = b[:, 3] - b[:, 1] + 1
+    tall = heights >= 0.5 * np.median(heights)
     centre_x = (b[:, 0] + b[:, 2]) / 2
-    return sorted(range(len(b)), key=lambda i: (line_of[i], centre_x[i]))
+    centre_y = (b[:, 1] + b[:, 3]) / 2
+    sign = -1.0 if rtl else 1.0
+    body_of: dict[int, int] = {}
+    for i in np.flatnonzero(~tall):
+        over = np.flatnonzero(
+            tall & (line_of == line_of[i]) & (b[:, 0] <= centre_x[i]) & (centre_x[i] <= b[:, 2])
+        )
+        if len(over):
+            dy = np.maximum(b[over, 1] - centre_y[i], centre_y[i] - b[over, 3])
+            body_of[int(i)] = int(over[np.argmin(dy)])
+    heads = [i for i in range(len(b)) if i not in body_of]
+    heads.sort(key=lambda i: (line_of[i], sign * centre_x[i], centre_y[i]))
+    order = []
+    for h in heads:
+        order.append(h)
+        marks = [i for i, body in body_of.items() if body == h]
+        order.extend(sorted(marks, key=lambda i: (sign * centre_x[i], centre_y[i])))
+    return order
 
 
-def layout(prep: Prepared, min_gap: float = 4.0) -> tuple[float, list[Tile], list[tuple]]:
+def layout(
+    prep: Prepared, min_gap: float = 4.0, rtl: bool = False
+) -> tuple[float, list[Tile], list[tuple]]:
     """Splits a prepared image into planner inputs.
+
+    Args:
+      rtl: regions and a region's tiles go right to left along a line.
 
     Returns:
       ``(scale, tiles, regions)``: tiles in planning order (regions in reading
@@ -121,15 +167,17 @@ def layout(prep: Prepared, min_gap: float = 4.0) -> tuple[float, list[Tile], lis
         boxes.append(tuple(whole.to_input([[x, y], [x + bw - 1, y + bh - 1]]).ravel()))
     tiles: list[Tile] = []
     regions = []
-    for r, i in enumerate(_reading_order(boxes)):
+    for r, i in enumerate(_reading_order(boxes, rtl)):
         k = i + 1
         x, y, bw, bh = (int(v) for v in stats[k, :4])
         regions.append(boxes[i])
         nx, ny = -(-bw // CANVAS), -(-bh // CANVAS)
         gx, gy = x - (nx * CANVAS - bw) // 2, y - (ny * CANVAS - bh) // 2
         cells = [(i, j) for i in range(nx) for j in range(ny)]
+        if rtl:
+            cells.sort(key=lambda c: (-c[0], c[1]))
         if bw <= bh:
-            cells.sort(key=lambda c: (c[1], c[0]))
+            cells.sort(key=lambda c: (c[1], -c[0] if rtl else c[0]))
         mask = labels == k
         for cx, cy in cells:
             ox, oy = gx + cx * CANVAS, gy + cy * CANVAS

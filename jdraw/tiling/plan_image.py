@@ -12,8 +12,10 @@ separable, and then either
   strokes that leave one tile where a stroke of the next tile starts
   (:mod:`jdraw.tiling.stitch`), so one stroke stays one motion.
 
-Regions are drawn in reading order (lines of text top to bottom, left to
-right within a line). Planned points are mapped back to input pixels and
+Regions are drawn in reading order: lines of text top to bottom, and along a
+line left to right, or right to left where the image reads so
+(:mod:`jdraw.images.reading`); a dot or mark comes right after the letter
+body it sits over or under. Planned points are mapped back to input pixels and
 snapped onto the skeleton, so strokes lie on the ink's centreline.
 """
 
@@ -61,6 +63,7 @@ class ImagePlan:
       lift_joins: pen lifts inside a tile removed by joining strokes that
         continue each other (``join_lifts``).
       fragments: planned pieces dropped because other strokes draw all their pixels.
+      direction: ``"ltr"`` or ``"rtl"``, the reading direction planned in.
     """
 
     strokes: list[np.ndarray]
@@ -75,14 +78,17 @@ class ImagePlan:
     border_breaks: int = 0
     lift_joins: int = 0
     fragments: int = 0
+    direction: str = "ltr"
 
     def pen_down_length(self) -> float:
         """Total length drawn, input pixels."""
         return float(sum(np.hypot(*np.diff(s, axis=0).T).sum() for s in self.strokes if len(s) > 1))
 
 
-def _run_planner(planner, images, checkpoint, max_steps, split=None):
+def _run_planner(planner, images, checkpoint, max_steps, split=None, direction=None):
     kwargs = {} if split is None else {"split": split}
+    if direction is not None:
+        kwargs["direction"] = direction
     if checkpoint is not None:
         kwargs["checkpoint"] = checkpoint
     if max_steps is not None:
@@ -127,6 +133,7 @@ def plan_image(
     join_lifts: bool = True,
     progress: bool = True,
     split: bool | None = None,
+    direction: str | None = None,
 ) -> ImagePlan:
     """Plans how to draw an image of any size; strokes in input pixel coordinates.
 
@@ -149,6 +156,10 @@ def plan_image(
       split: passed to :func:`jdraw.plan` (``False``: no learned cutting and
         joining of strokes; ``None``: as the checkpoint says). Only with the
         default planner.
+      direction: ``"ltr"``, ``"rtl"`` (right-to-left script: regions along a
+        line and the strokes of a tile ordered right to left, the latter only
+        with the default planner) or ``None``: read from the image
+        (:func:`jdraw.images.reading.detect`).
 
     Raises:
       jdraw.images.load.ImageError: unreadable or blank image; jdraw.validate.InputError
@@ -164,11 +175,17 @@ def plan_image(
     min_gap = validate.positive("min_gap", min_gap)
     batch_size = validate.positive_int("batch_size", batch_size)
     simplify_tol = validate.positive("simplify_tol", simplify_tol, zero=True)
+    if direction is not None:
+        validate.choice("direction", direction, ("ltr", "rtl"))
     if isinstance(image, str | os.PathLike):
         image = load_image(image)
     image = validate.any_image(image)
     prep = prepare(image, polarity=polarity)
-    scale, tiles, regions = layout(prep, min_gap)
+    if direction is None:
+        from jdraw.images import reading
+
+        direction = reading.detect(prep)
+    scale, tiles, regions = layout(prep, min_gap, rtl=direction == "rtl")
     single = choose_scale(prep, min_gap)[1]
     skel_pts = np.argwhere(prep.skeleton)[:, ::-1].astype(np.float64)
     tree = cKDTree(skel_pts)
@@ -186,7 +203,13 @@ def plan_image(
     for start in batches:
         chunk = tiles[start : start + batch_size]
         strokes, trunc = _run_planner(
-            planner, [t.image for t in chunk], checkpoint, max_steps, split
+            planner,
+            [t.image for t in chunk],
+            checkpoint,
+            max_steps,
+            split,
+            # The default planner's ranker orders right to left; a custom planner is left as is.
+            "rtl" if direction == "rtl" and planner is default_planner else None,
         )
         truncated += int(trunc.sum())
         for t, s in zip(chunk, strokes, strict=True):
@@ -233,4 +256,5 @@ def plan_image(
         report.get("breaks", 0),
         report.get("lift_joins", 0),
         report.get("fragments", 0),
+        direction,
     )

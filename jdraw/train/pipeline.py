@@ -32,7 +32,7 @@ def is_pipeline(cfg: ConfigDict) -> bool:
 
 
 def kind(stage_cfg: ConfigDict) -> str:
-    """``"model"``, ``"splitter"`` or ``"ranker"``."""
+    """``"model"``, ``"splitter"``, ``"ranker"`` or ``"reading"``."""
     return stage_cfg.get("stage", "model") if "model" not in stage_cfg else "model"
 
 
@@ -70,7 +70,11 @@ def run_stage(stage_cfg: ConfigDict, stage_dir: pathlib.Path, progress: bool = T
         from jdraw.train import ranker
 
         return ranker.train(stage_cfg, stage_dir, progress=progress)
-    raise ValueError(f"{stage_dir}: stage kind {k!r} is none of model, splitter, ranker")
+    if k == "reading":
+        from jdraw.train import reading
+
+        return reading.train(stage_cfg, stage_dir)
+    raise ValueError(f"{stage_dir}: stage kind {k!r} is none of model, splitter, ranker, reading")
 
 
 def assemble(cfg: ConfigDict, workdir: pathlib.Path) -> pathlib.Path:

@@ -1,0 +1,147 @@
+"""Reading direction: detected from the image, a hint that overrides it, right-to-left plans.
+
+The two word images in tests/data were set in fonts the detector never saw
+(Noto Serif Hebrew, Amiri; see jdraw.data.fonts.DETECTOR_EVAL), so the tests
+need no font installed.
+"""
+
+import pathlib
+
+import numpy as np
+import pytest
+from flax import nnx
+
+from jdraw import plan
+from jdraw.images import reading
+from jdraw.images.load import load_image
+from jdraw.images.prepare import prepare
+from jdraw.planner import ranker
+from jdraw.planner.plan import load_ranker
+from jdraw.tiling import layout
+from jdraw.tiling import plan_image as tiling
+from tests.doubles import trace_planner
+from tests.synthetic import photo_like
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+EXAMPLES = sorted((ROOT / "examples" / "images").glob("*"))
+RTL_WORDS = [ROOT / "tests" / "data" / n for n in ("hebrew_noto_serif.png", "arabic_amiri.png")]
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
+def test_examples_read_left_to_right(path):
+    # A kanji, a cursive "hello", a printed sentence and a sketch.
+    assert reading.detect(prepare(load_image(path))) == "ltr"
+
+
+@pytest.mark.parametrize("path", RTL_WORDS, ids=lambda p: p.name)
+def test_hebrew_and_arabic_read_right_to_left(path):
+    prep = prepare(load_image(path))
+    assert reading.detect(prep) == "rtl"
+    # Mirrored, the same ink no longer reads as these scripts.
+    mirrored = prepare(load_image(path)[:, ::-1])
+    assert reading.rtl_score(mirrored) < reading.rtl_score(prep)
+
+
+def test_line_windows_are_normalised():
+    prep = prepare(load_image(RTL_WORDS[0]))
+    (line,) = reading.line_images(prep)  # one line of two words
+    assert line.shape[0] == reading.WINDOW and line.shape[1] > 3 * reading.WINDOW
+    x, ink = reading.drawing_windows(prep)
+    assert x.shape[1:] == (reading.WINDOW, reading.WINDOW) and np.all(ink > 0)
+    assert x.max() <= 1.0 and x.min() >= 0.0
+
+
+def test_the_hint_overrides_the_image():
+    img = load_image(RTL_WORDS[0])
+    auto = tiling.plan_image(img, planner=trace_planner, progress=False)
+    ltr = tiling.plan_image(img, planner=trace_planner, progress=False, direction="ltr")
+    assert auto.direction == "rtl" and ltr.direction == "ltr"
+    cx = lambda r: np.array([(b[0] + b[2]) / 2 for b in r.regions])
+    bodies = lambda r: cx(r)[np.array([b[3] - b[1] for b in r.regions]) > 20]
+    assert np.all(np.diff(bodies(auto)) < 0) and np.all(np.diff(bodies(ltr)) > 0)
+    with pytest.raises(ValueError, match="direction"):
+        tiling.plan_image(img, planner=trace_planner, progress=False, direction="up")
+
+
+@pytest.mark.parametrize("name", ["sentence.jpg", "sketch.jpg"])
+def test_left_to_right_images_plan_as_before(name):
+    """Read from the image, a left-to-right drawing is planned exactly as with ``"ltr"``."""
+    img = load_image(ROOT / "examples" / "images" / name)
+    auto = tiling.plan_image(img, planner=trace_planner, progress=False)
+    ltr = tiling.plan_image(img, planner=trace_planner, progress=False, direction="ltr")
+    rtl = tiling.plan_image(img, planner=trace_planner, progress=False, direction="rtl")
+    assert len(auto.strokes) == len(ltr.strokes)
+    assert all(np.array_equal(a, b) for a, b in zip(auto.strokes, ltr.strokes))
+    assert not all(np.array_equal(a, b) for a, b in zip(rtl.strokes, ltr.strokes))
+
+
+def test_reading_order_right_to_left_with_marks_after_their_body():
+    boxes = [
+        (300, 10, 360, 60),  # line 1, right
+        (10, 110, 60, 160),  # line 2, left
+        (12, 12, 70, 58),  # line 1, left
+        (45, 0, 50, 5),  # a dot above line 1's left word
+        (200, 105, 260, 150),  # line 2, right
+        (20, 62, 26, 68),  # a dot under line 1's left word, left of the other
+        (150, 30, 156, 36),  # a stray dot between the words: on its own
+    ]
+    assert layout._reading_order(boxes) == [2, 5, 3, 6, 0, 1, 4]
+    assert layout._reading_order(boxes, rtl=True) == [0, 6, 2, 3, 5, 4, 1]
+
+
+def test_wide_region_tiles_go_right_to_left():
+    t = np.linspace(0, 1, 400)
+    line = np.stack([40 + 900 * t, 150 + 100 * np.sin(7 * np.pi * t)], 1)
+    prep = prepare(photo_like([line], (300, 980), width=6))
+    xs = lambda tiles: [t.transform.offset[0] for t in tiles]
+    ltr, rtl = layout.layout(prep)[1], layout.layout(prep, rtl=True)[1]
+    assert len(ltr) >= 8 and sorted(xs(ltr)) == sorted(xs(rtl))
+    # Offsets map input to tile pixels, so a tile further right has a more negative offset.
+    assert xs(ltr)[0] == max(xs(ltr)) and xs(rtl)[0] == min(xs(rtl))
+
+
+def test_ranker_orders_right_to_left_as_the_mirror_image():
+    rk = load_ranker()
+    assert rk is not None
+    rng = np.random.default_rng(0)
+    strokes = []
+    for x in (15, 40, 65, 85):  # four vertical bars of a word, each with a wiggle
+        y = np.arange(20, 80, dtype=np.float64)
+        strokes.append(np.stack([x + np.round(2 * np.sin(y / 7 + rng.random())), y], 1))
+    order, flip = ranker.order_many(rk, [strokes])[0]
+    r_order, r_flip = ranker.order_many(rk, [ranker.mirrored(strokes)], mirror=True)[0]
+    assert (order, flip) == (r_order, r_flip)  # mirroring twice is the identity
+    rtl_order, _ = ranker.order_many(rk, [strokes], mirror=True)[0]
+    assert order[0] == 0 and rtl_order[0] == 3  # leftmost first; rightmost first
+
+
+def test_plan_direction_reaches_the_ranker():
+    img = np.zeros((100, 100), bool)
+    for x in (20, 45, 70):
+        img[20:80, x] = True
+    ltr, rtl = plan(img, direction="ltr"), plan(img, direction="rtl")
+    first = lambda p: p.strokes[0][0][0][0]
+    assert first(ltr) == 20 and first(rtl) == 70
+    with pytest.raises(ValueError, match="direction"):
+        plan(img, direction="down")
+
+
+def test_fit_learns_and_round_trips(tmp_path):
+    from jdraw.train import reading as training
+
+    rng = np.random.default_rng(0)
+    x = np.zeros((200, reading.WINDOW, reading.WINDOW), np.uint8)
+    y = np.arange(200) % 2 == 0
+    for k in range(200):  # class 1: horizontal lines; class 0: vertical lines
+        i = rng.integers(4, 28)
+        if y[k]:
+            x[k, i, 4:28] = 255
+        else:
+            x[k, 4:28, i] = 255
+    net, logs = training.fit(x, y, steps=150, batch=32, lr=1e-2, channels=(4, 8, 8))
+    logits = reading.window_logits(net, x.astype(np.float32) / 255)
+    assert np.mean((logits > 0) == y) >= 0.95, logs
+    reading.save(net, tmp_path, {"test": True})
+    again = reading.load(tmp_path)
+    np.testing.assert_allclose(reading.window_logits(again, x[:8] / 255.0), logits[:8], atol=1e-5)
+    assert isinstance(again, nnx.Module)

@@ -11,7 +11,7 @@ import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
-from jdraw import geometry, state, validate
+from jdraw import compile_cache, geometry, state, validate
 from jdraw.model import bundle, checkpoints
 from jdraw.planner import global_only, slots
 from jdraw.planner import loop as planner
@@ -291,6 +291,7 @@ def plan(
     from jdraw.images import canonical
     from jdraw.planner import ranker
 
+    compile_cache.enable()
     if order not in ("auto", *ranker.ORDERS):
         raise ValueError(f"order must be 'auto' or one of {ranker.ORDERS}, got {order!r}")
     targets = drawn = as_targets(images)

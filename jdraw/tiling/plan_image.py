@@ -81,15 +81,17 @@ class ImagePlan:
         return float(sum(np.hypot(*np.diff(s, axis=0).T).sum() for s in self.strokes if len(s) > 1))
 
 
-def _run_planner(planner, images, checkpoint, max_steps, split=None):
+def _run_planner(planner, images, checkpoint, max_steps, split=None, batch_size=16):
     kwargs = {} if split is None else {"split": split}
     if checkpoint is not None:
         kwargs["checkpoint"] = checkpoint
     if max_steps is not None:
         kwargs["max_steps"] = max_steps
     n = len(images)
-    # Batches come in a few fixed sizes so a jitted planner compiles once per size.
-    size = 1 << (n - 1).bit_length()
+    # Two batch shapes only, so a jitted planner compiles at most two programs for any
+    # mix of drawings: one tile (a character, the small one-slot program) or a full batch
+    # (every tiled drawing and every set of images share it).
+    size = 1 if n == 1 else max(n, 1 << (batch_size - 1).bit_length())
     batch = np.zeros((size, CANVAS, CANVAS), bool)
     batch[:n] = np.stack(images)
     plan = planner(batch, **kwargs)
@@ -150,9 +152,9 @@ def _settings(planner, checkpoint, split, max_steps, polarity, min_gap, batch_si
     )
 
 
-def _lay_out(image, polarity: str, min_gap: float, max_pixels) -> _Job:
+def _lay_out(image, polarity: str, min_gap: float, max_pixels, flag="max_pixels=") -> _Job:
     if isinstance(image, str | os.PathLike):
-        image = validate.any_image(load_image(image, max_pixels))
+        image = validate.any_image(load_image(image, max_pixels, flag))
     else:
         image = validate.any_image(image)
         h, w = image.shape[:2]
@@ -170,6 +172,7 @@ def _plan_tiles(pending: list[tuple[_Job, Tile]], cfg: dict) -> None:
         cfg["checkpoint"],
         cfg["max_steps"],
         cfg["split"],
+        cfg["batch_size"],
     )
     for (job, t), s, tr in zip(pending, strokes, trunc, strict=True):
         s, n = _complete(t.image, [np.asarray(p, np.float64).reshape(-1, 2) for p in s])
@@ -238,6 +241,7 @@ def plan_images(
     progress: bool = True,
     split: bool | None = None,
     max_pixels: float | None = MAX_PIXELS,
+    pixel_flag: str = "max_pixels=",
 ) -> Iterator[ImagePlan | Exception]:
     """Plans many images in one stream: each image's plan (or its error), in input order.
 
@@ -251,6 +255,8 @@ def plan_images(
     Args:
       images: an iterable of what :func:`plan_image` takes (arrays or paths).
       progress: one progress bar over the images (on a terminal).
+      pixel_flag: how a too-large image's message names the limit's setting
+        (``"--max-mpx"`` on the command line).
       others: as :func:`plan_image`.
 
     Yields:
@@ -277,7 +283,7 @@ def plan_images(
 
     for image in items:
         try:
-            job = _lay_out(image, cfg["polarity"], cfg["min_gap"], max_pixels)
+            job = _lay_out(image, cfg["polarity"], cfg["min_gap"], max_pixels, pixel_flag)
         except ValueError as e:  # ImageError, InputError: this image only
             queue.append(e)
             yield from ready()
@@ -323,8 +329,9 @@ def plan_image(
       checkpoint, max_steps: passed to the planner when given.
       polarity: ``"auto"``, ``"dark"`` or ``"light"`` ink.
       min_gap: canvas pixels kept between the centrelines of separate strokes.
-      batch_size: most tiles per planner call; a call's batch is padded to a
-        power of two so a jitted planner compiles for few shapes.
+      batch_size: most tiles per planner call; a call of several tiles is padded
+        to this (rounded up to a power of two), so a jitted planner compiles for
+        two shapes only: one tile and a full batch.
       simplify_tol: input pixels a simplified stroke may stray from the plan.
       join_lifts: on tiled drawings, also join strokes of one tile that meet
         end to end and continue each other (see :func:`stitch`); strokes that

@@ -141,7 +141,8 @@ def to_gray(image: np.ndarray) -> np.ndarray:
     if img.dtype == bool:
         return np.where(img, 0.0, 1.0).astype(np.float32)
     if np.issubdtype(img.dtype, np.integer):
-        f = img.astype(np.float32) / float(np.iinfo(img.dtype).max)
+        f = img.astype(np.float32)
+        f /= float(np.iinfo(img.dtype).max)
     else:
         f = np.nan_to_num(img.astype(np.float32))
         lo, hi = float(f.min()), float(f.max())

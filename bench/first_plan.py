@@ -94,6 +94,8 @@ def child(stats_path: str, argv: list[str]) -> int:
         if event == "/jax/core/compile/backend_compile_duration":
             programs.append([kw.get("fun_name", "?"), secs, hits[0] > 0])
             hits[0] = 0
+        elif event == "/jdraw/program_store/load_duration":  # jdraw.planner.executables
+            programs.append(["stream", secs, True])
 
     def on_event(event, **kw):
         if event == "/jax/compilation_cache/cache_hits":

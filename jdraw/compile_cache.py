@@ -15,6 +15,7 @@ planning goes on without the cache. If the user has set JAX's own
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pathlib
 import tempfile
@@ -93,3 +94,24 @@ def enable() -> pathlib.Path | None:
     cc.reset_cache()  # a compilation before this one must not pin "no cache" for the process
     _STATE["dir"] = folder
     return folder
+
+
+@contextlib.contextmanager
+def bypassed():
+    """Compilations inside neither read nor write JAX's cache: fresh executables.
+
+    An executable JAX read back from its cache cannot be serialized again
+    whole (on the CPU its functions are missing when the copy runs), so
+    :mod:`jdraw.planner.executables` compiles the programs it stores in here.
+    """
+    import jax
+    from jax.experimental.compilation_cache import compilation_cache as cc
+
+    was = jax.config.jax_enable_compilation_cache
+    jax.config.update("jax_enable_compilation_cache", False)
+    cc.reset_cache()  # JAX decides once per process whether to use the cache; ask again
+    try:
+        yield
+    finally:
+        jax.config.update("jax_enable_compilation_cache", was)
+        cc.reset_cache()

@@ -15,16 +15,18 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 _PLAN = """
 import json, warnings
 from jax import monitoring
-hits = []
+hits, stored = [], []
 monitoring.register_event_listener(
     lambda e, **k: hits.append(e) if e == "/jax/compilation_cache/cache_hits" else None)
+monitoring.register_event_duration_secs_listener(
+    lambda e, s, **k: stored.append(e) if e == "/jdraw/program_store/load_duration" else None)
 import jdraw
 from jdraw import compile_cache
 with warnings.catch_warnings(record=True) as w:
     warnings.simplefilter("always")
     r = jdraw.plan_image("examples/images/kanji.png", progress=False)
     folder = compile_cache.enable()
-print(json.dumps({"dir": folder and str(folder), "hits": len(hits),
+print(json.dumps({"dir": folder and str(folder), "hits": len(hits), "stored": len(stored),
                   "warnings": [str(x.message) for x in w],
                   "strokes": [s.tolist() for s in r.strokes]}))
 """
@@ -72,11 +74,12 @@ def test_plans_identical_with_and_without_the_cache(tmp_path):
     cold = _run(_PLAN, cache)
     folder = pathlib.Path(cold["dir"])
     assert folder.parent == cache and folder.name != "xla-jax0.0.1-jaxlib0.0.1"
-    assert cold["hits"] == 0 and any(folder.iterdir())
+    assert cold["hits"] == 0 and cold["stored"] == 0 and any(folder.iterdir())
+    assert len(list((folder / "jdraw-programs").iterdir())) == 1  # the slot planner, whole
     warm = _run(_PLAN, cache)
-    assert warm["hits"] > 0 and warm["dir"] == cold["dir"]
+    assert warm["hits"] > 0 and warm["stored"] == 1 and warm["dir"] == cold["dir"]
     off = _run(_PLAN, "off")
-    assert off["dir"] is None and off["hits"] == 0
+    assert off["dir"] is None and off["hits"] == 0 and off["stored"] == 0
     assert cold["strokes"] == warm["strokes"] == off["strokes"]
     assert not cold["warnings"] and not warm["warnings"]
 

@@ -238,8 +238,17 @@ def stream_plan(
     graphdef, st = nnx.split(model)
     fn = _streamer(graphdef, limits, local_encoding, width, global_batch, devices)
     static = (graphdef, limits, local_encoding, width, global_batch)
-    exe = _executable(fn, static, (st, tq, lq, counts), devices)
-    out = jax.device_get(exe(st, tq, lq, counts))
+    args = (st, tq, lq, counts)
+    exe = _executable(fn, static, args, devices)
+    try:
+        out = jax.device_get(exe(*args))
+    except jax.errors.JaxRuntimeError:
+        if exe is fn:
+            raise
+        # A stored program that does not run (a broken or foreign file): drop it, use the jit.
+        executables.forget("stream", static, args, devices)
+        _EXECUTABLES[(fn, executables.key("stream", static, args, devices))] = fn
+        out = jax.device_get(fn(*args))
     keep = np.asarray(keep, int)
     return out._replace(
         actions=out.actions[keep], length=out.length[keep], truncated=out.truncated[keep]

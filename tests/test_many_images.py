@@ -71,7 +71,7 @@ def test_a_stream_reports_a_bad_image_and_goes_on(tmp_path):
 def test_real_planner_same_plans_alone_and_in_a_set():
     """With :func:`jdraw.plan`: a one-tile kanji and a tiled word, alone and together."""
     kanji = cv2.imread("examples/images/kanji.png", cv2.IMREAD_GRAYSCALE)
-    word = _word("hello")
+    word = _word("minimum")
     alone = [tiling.plan_image(im, progress=False) for im in (kanji, word)]
     assert len(alone[0].tiles) == 1 and len(alone[1].tiles) > 1
     together = tiling.plan_image([kanji, word], progress=False)

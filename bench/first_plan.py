@@ -1,6 +1,6 @@
 """How long a user waits for ``jdraw draw``: fresh processes, cold and warm compilation cache.
 
-  nice -n 10 python bench/first_plan.py            # every row, ~6 minutes on a 2-core CPU
+  nice -n 10 python bench/first_plan.py            # every row, ~4-8 minutes on a 2-core CPU
   python bench/first_plan.py --rows readme_cold,readme_warm
 
 Each row is one new ``python -m jdraw.cli ...`` process (through this script's
@@ -9,15 +9,19 @@ wall seconds are from process start to exit, measured by this parent. Rows:
 
 * ``readme``: the README's ``jdraw draw examples/images/kanji.png --png ... --svg ...``,
   with an empty compilation cache (cold) and then with the cache it left (warm);
-* ``word``: a 387x160 cursive word (OpenCV's Hershey script font, 3-px pen), cold and warm;
-* ``one``/``set20``: one generated word, then 20 of them in one command (``--out-dir``), warm;
+* ``word``: a 401x160 cursive-looking word (joined loops, 3-px pen; :func:`word_image`),
+  cold and warm;
+* ``one``/``set20``: one generated word, then 20 of them in one command (``--out-dir``), warm
+  (if the word rows did not run, an unmeasured run compiles the word's program first);
 * ``big10k``: a 10000x10000 PNG of one line, planned (peak RSS is the row's point);
 * ``big20k``: a 20000x20000 PNG of one line, refused by the pixel limit;
 * ``import``: ``python -c "import jdraw"``.
 
 "programs" counts XLA executables the process needed, "compiled" those XLA
-compiled (the rest were read from the cache), "compile s" the seconds spent
-compiling or reading them. The images are generated under a temporary folder.
+compiled (the rest were read from JAX's cache or jdraw's program store),
+"compile s" the seconds spent compiling or reading them, "peak RSS" the
+process's own. The images are generated under a temporary folder. Results and
+the load they were measured under: docs/speed.md.
 """
 
 from __future__ import annotations
@@ -183,6 +187,7 @@ def main() -> None:
         f"{'row':<44} {'wall s':>7} {'exit':>4} {'programs':>8} {'compiled':>8} "
         f"{'compile s':>9} {'peak RSS GB':>11}"
     )
+    warmed = False
     for name, label, argv, cold in table:
         if rows is not None and name not in rows:
             continue
@@ -194,6 +199,9 @@ def main() -> None:
             argv = ["draw", str(word), "--svg", str(out / "w.svg"), "--no-progress"]
         elif argv[0] != "draw":
             argv = ["draw", *argv, "--out-dir", str(out / name), "--svg", "--no-progress"]
+        if name in ("one", "set20") and not warmed:  # the word program, compiled unmeasured
+            run_row(["draw", str(word), "--no-progress"], env, ROOT)
+        warmed = warmed or name.startswith("word") or name == "one"
         r = run_row(argv, env, ROOT)
         print(
             f"{label:<44} {r['wall']:7.1f} {r['rc']:4d} {r['programs']:8d} {r['compiled']:8d} "

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import os
 import sys
 import time
 import traceback
@@ -30,13 +31,22 @@ examples:
   jdraw draw board.jpg --polarity light --json board.json
   jdraw draw word.png --trajectory word_arm.json --sheet-mm 120
 
+  jdraw draw scans/ --out-dir plans --svg --gcode    # every image in scans/, one run
+
 exit status:
   0  success
   1  --trajectory finds the sheet out of the arm's reach (the file is written)
   2  user error: a bad option, an unusable image (missing, unreadable,
-     unsupported, blank) or checkpoint; one line on stderr (--debug: traceback)
+     unsupported, blank, too many pixels) or checkpoint; one line on stderr
+     (--debug: traceback). With several images, each bad one gets its own
+     line, the others are planned, and the status is 2 if any failed.
   3  internal error (a bug: please report it with the --debug traceback)
 All options are checked before planning starts.
+
+compilation cache: the first run on a machine compiles the planner (tens of
+seconds); compiled programs are kept in $XDG_CACHE_HOME/jdraw (default
+~/.cache/jdraw) so later runs start in seconds. JDRAW_CACHE_DIR=DIR moves it,
+JDRAW_CACHE_DIR=off turns it off.
 """
 
 
@@ -59,29 +69,54 @@ def _parser() -> argparse.ArgumentParser:
     d.add_argument(
         "image",
         metavar="IMAGE",
-        help="input image: PNG, JPEG, GIF (first frame), BMP, TIFF, WebP, PBM/PGM/PPM",
+        nargs="+",
+        help="input image: PNG, JPEG, GIF (first frame), BMP, TIFF, WebP, PBM/PGM/PPM; or "
+        "several, or folders of them, planned in one run (outputs need --out-dir)",
     )
-    out = d.add_argument_group("outputs (any combination; with none, only a summary is printed)")
+    out = d.add_argument_group(
+        "outputs (any combination; with none, only a summary is printed). With --out-dir "
+        "each flag names only a format: --svg --png writes DIR/<image name>.svg and .png"
+    )
+    out.add_argument(
+        "--out-dir",
+        metavar="DIR",
+        help="write each image's outputs to DIR/<image name>.<format> (made if missing); "
+        "needed for several images",
+    )
     out.add_argument(
         "--svg",
         metavar="OUT",
+        nargs="?",
+        const="",
         help="SVG, one polyline per stroke in drawing order, viewBox = image pixels",
     )
     out.add_argument(
-        "--gcode", metavar="OUT", help="G-code for a pen plotter, millimetres (see --preset)"
+        "--gcode",
+        metavar="OUT",
+        nargs="?",
+        const="",
+        help="G-code for a pen plotter, millimetres (see --preset)",
     )
     out.add_argument(
-        "--json", metavar="OUT", help="JSON with the strokes and the pen-up moves between them"
+        "--json",
+        metavar="OUT",
+        nargs="?",
+        const="",
+        help="JSON with the strokes and the pen-up moves between them",
     )
     out.add_argument(
         "--png",
         metavar="OUT",
+        nargs="?",
+        const="",
         help="PNG of the strokes coloured by order (blue first, red last), starts dotted; "
         "cropped to the ink",
     )
     out.add_argument(
         "--gif",
         metavar="OUT",
+        nargs="?",
+        const="",
         help="animated GIF of the plan being drawn at pen speed: the current stroke black, "
         "pen-up moves faint, the input light grey behind; cropped to the ink",
     )
@@ -90,7 +125,7 @@ def _parser() -> argparse.ArgumentParser:
         metavar="OUT",
         help="JSON joint trajectory (shaped like ROS trajectory_msgs/JointTrajectory) of "
         "the simulated 7-DoF arm drawing the strokes on a --sheet-mm sheet; the arm is "
-        "rolled out in MuJoCo MJX to check reach and ink (adds ~30 s of compiling)",
+        "rolled out in MuJoCo MJX to check reach and ink (adds ~30 s of compiling; one image)",
     )
 
     im = d.add_argument_group("image")
@@ -106,6 +141,14 @@ def _parser() -> argparse.ArgumentParser:
         default=4.0,
         metavar="PX",
         help="planner-canvas pixels kept between separate lines when scaling down (default: 4)",
+    )
+    im.add_argument(
+        "--max-mpx",
+        type=float,
+        default=100.0,
+        metavar="MPX",
+        help="refuse images of more megapixels, read from the file header before decoding "
+        "(default: 100; planning needs about 30 bytes of memory per pixel)",
     )
 
     pl = d.add_argument_group("planner")
@@ -226,11 +269,43 @@ def _fail(msg: str) -> int:
     return 2
 
 
-def _check(args) -> None:
+def _check(args, images) -> None:
     """Every option of ``draw``, checked before any work (raises ``InputError``)."""
+    from jdraw.io import jobs
+
+    formats = [f for f in jobs.FORMATS if getattr(args, f) is not None]
+    if args.out_dir is not None:
+        for f in formats:
+            if getattr(args, f):
+                raise validate.InputError(
+                    f"with --out-dir, --{f} names a format only (it writes "
+                    f"{args.out_dir}/<image name>.{f}); got --{f} {getattr(args, f)!r}; put the "
+                    "images before the output flags"
+                )
+        for opt in ("trajectory", "robot"):
+            if getattr(args, opt):
+                raise validate.InputError(f"--{opt} takes one image, not --out-dir")
+        if os.path.exists(args.out_dir) and not os.path.isdir(args.out_dir):
+            raise validate.InputError(f"--out-dir {args.out_dir!r} is a file, not a folder")
+        try:
+            jobs.out_dir_files(images, args.out_dir, formats)
+        except ValueError as e:
+            raise validate.InputError(f"--out-dir: {e}") from e
+    else:
+        for f in formats:
+            if not getattr(args, f):
+                raise validate.InputError(f"--{f} needs a file name (or give --out-dir DIR)")
+        if len(images) > 1 and (formats or args.trajectory or args.robot):
+            raise validate.InputError(
+                f"{len(images)} images: give --out-dir DIR and name formats only, "
+                "e.g. --out-dir plans --svg --png"
+            )
+    if not images:
+        raise validate.InputError(f"no image files in {' '.join(args.image)}")
     for opt in ("svg", "gcode", "json", "png", "gif", "trajectory"):
         if getattr(args, opt):
             validate.output_path(f"--{opt}", getattr(args, opt))
+    validate.positive("--max-mpx", args.max_mpx)
     validate.positive_int("--max-steps", args.max_steps, optional=True)
     validate.positive("--min-gap", args.min_gap)
     validate.positive("--width-mm", args.width_mm, optional=True)
@@ -263,13 +338,87 @@ def _robot():
     return robot
 
 
-def _draw(args) -> int:
+def _output_options(args) -> dict:
+    return dict(
+        width_mm=args.width_mm,
+        height_mm=args.height_mm,
+        preset=args.preset,
+        origin_mm=tuple(args.origin_mm),
+        feed=args.feed,
+        travel_feed=args.travel_feed,
+        pen_up=args.pen_up,
+        pen_down=args.pen_down,
+        z_up=args.z_up,
+        z_down=args.z_down,
+    )
+
+
+def _plan_options(args) -> dict:
+    return dict(
+        checkpoint=args.checkpoint,
+        max_steps=args.max_steps,
+        polarity=args.polarity,
+        min_gap=args.min_gap,
+        split=False if args.no_split else None,
+        max_pixels=args.max_mpx * 1e6,
+        direction=None if args.direction == "auto" else args.direction,
+    )
+
+
+def _draw_set(args, images) -> int:
+    """Several images (or ``--out-dir``): one stream through the planner, a line per image."""
+    from tqdm.auto import tqdm
+
     from jdraw.images import load
-    from jdraw.io import outputs
+    from jdraw.io import jobs
     from jdraw.tiling import plan_image as tiling
 
-    files = {k: getattr(args, k) for k in ("svg", "gcode", "json", "png", "gif")}
-    _check(args)
+    formats = [f for f in jobs.FORMATS if getattr(args, f) is not None]
+    files = [{}] * len(images)
+    if args.out_dir is not None:
+        os.makedirs(args.out_dir, exist_ok=True)
+        files = jobs.out_dir_files(images, args.out_dir, formats)
+    failed = 0
+    bar = tqdm(
+        total=len(images), desc="planning", unit="image", disable=True if args.no_progress else None
+    )
+    results = tiling.plan_images(
+        (str(p) for p in images), progress=False, pixel_flag="--max-mpx", **_plan_options(args)
+    )
+    t0 = time.perf_counter()
+    for path, out, result in zip(images, files, results, strict=True):
+        try:
+            if isinstance(result, Exception):
+                raise result
+            stats = jobs.write_plan(result, out, **_output_options(args)).stats
+            line = jobs.summary(str(path), result, stats, time.perf_counter() - t0)
+            tqdm.write(line, file=sys.stdout)
+        except (ValueError, OSError) as e:
+            failed += 1
+            msg = str(e)
+            if isinstance(e, load.BlankImageError):
+                msg = f"{path}: {e}; nothing to draw"
+            elif str(path) not in msg:
+                msg = f"{path}: {msg}"
+            tqdm.write(f"jdraw: error: {validate.one_line(msg)}", file=sys.stderr)
+        bar.update(1)
+        t0 = time.perf_counter()
+    bar.close()
+    if failed:
+        print(f"jdraw: {failed} of {len(images)} image(s) failed", file=sys.stderr)
+    return 2 if failed else 0
+
+
+def _draw(args) -> int:
+    from jdraw.images import load
+    from jdraw.io import jobs, outputs
+
+    images = jobs.image_files(args.image)
+    _check(args, images)
+    if args.out_dir is not None or len(images) > 1:
+        return _draw_set(args, images)
+    files = {k: getattr(args, k) for k in jobs.FORMATS}
+    image = str(images[0])
     faults = None
     if args.robot:
         try:
@@ -278,41 +427,22 @@ def _draw(args) -> int:
             raise validate.InputError(str(e)) from e
     t0 = time.perf_counter()
     try:
-        img = load.load_image(args.image)
+        # Read (and size-checked) before the planner's imports: a refusal comes at once.
+        pixels = load.load_image(image, args.max_mpx * 1e6, "--max-mpx")
+        from jdraw.tiling import plan_image as tiling
+
         result = tiling.plan_image(
-            img,
-            checkpoint=args.checkpoint,
-            max_steps=args.max_steps,
-            polarity=args.polarity,
-            min_gap=args.min_gap,
-            progress=not args.no_progress,
-            split=False if args.no_split else None,
-            direction=None if args.direction == "auto" else args.direction,
+            pixels, progress=not args.no_progress, **{**_plan_options(args), "max_pixels": None}
         )
     except load.BlankImageError as e:
-        return _fail(f"{args.image}: {e}; nothing to draw")
+        return _fail(f"{image}: {e}; nothing to draw")
     except load.ImageError as e:
         return _fail(str(e))
     shape, strokes = result.shape, result.strokes
     try:
-        plot = outputs.write_outputs(
-            result,
-            **files,
-            width_mm=args.width_mm,
-            height_mm=args.height_mm,
-            preset=args.preset,
-            origin_mm=tuple(args.origin_mm),
-            feed=args.feed,
-            travel_feed=args.travel_feed,
-            pen_up=args.pen_up,
-            pen_down=args.pen_down,
-            z_up=args.z_up,
-            z_down=args.z_down,
-        ).stats
-    except (KeyError, ValueError, IndexError) as e:
-        return _fail(f"bad G-code template or size: {e}")
-    except OSError as e:
-        return _fail(f"cannot write output: {e}")
+        plot = jobs.write_plan(result, files, **_output_options(args)).stats
+    except jobs.OutputError as e:
+        return _fail(str(e))
     arm_msg, status = "", 0
     if args.trajectory:
         _robot()
@@ -333,17 +463,7 @@ def _draw(args) -> int:
         opts = robot.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
         res = robot.closed_loop.image_closed_loop(strokes, shape, faults, args.rounds, opts)
         arm_msg = "\n".join(filter(None, [arm_msg, res.summary()]))
-    h, w = shape
-    msg = (
-        f"{args.image}: {w}x{h} px, {len(result.tiles)} tile(s), {plot.summary()}"
-        f"{'' if plot.units == 'mm' else ' (G-code 100 mm wide)'}, "
-        f"{time.perf_counter() - t0:.1f} s"
-    )
-    if result.direction == "rtl":
-        msg += ", read right to left"
-    if result.truncated:
-        msg += f"; {result.truncated} tile(s) hit --max-steps ({result.completed_pixels} px traced)"
-    print(msg)
+    print(jobs.summary(image, result, plot, time.perf_counter() - t0))
     if arm_msg:
         print(arm_msg)
     if status:
@@ -363,7 +483,6 @@ def _draw(args) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Runs the command line; returns the exit status (see the help's epilog)."""
     from jdraw.images import load
-    from jdraw.model import bundle
 
     args = _parser().parse_args(argv)
     debug = getattr(args, "debug", False)
@@ -375,13 +494,17 @@ def main(argv: list[str] | None = None) -> int:
 
             return server.main(args)
         return 2
-    except (validate.InputError, load.ImageError, bundle.BundleError) as e:
+    except (validate.InputError, load.ImageError) as e:
         if debug:
             traceback.print_exc()
         return _fail(str(e))
-    except Exception as e:  # anything else is a bug
+    except Exception as e:  # anything else is a bug, but for a bad checkpoint
         if debug:
             traceback.print_exc()
+        # Not imported before it is needed (it loads Flax): an error from it means it was.
+        bundle = sys.modules.get("jdraw.model.bundle")
+        if bundle is not None and isinstance(e, bundle.BundleError):
+            return _fail(str(e))
         print(
             f"jdraw: internal error: {type(e).__name__}: {validate.one_line(e)} "
             "(run again with --debug for the traceback)",

@@ -17,8 +17,6 @@ import string
 
 import numpy as np
 
-from jdraw.geometry import CANVAS
-
 # Fields a G-code pen template may name (see jdraw.io.gcode.PlotterPreset).
 TEMPLATE_FIELDS = (
     "z_up",
@@ -112,6 +110,8 @@ def canvas_images(images) -> np.ndarray:
     Accepts ``[B, 100, 100]``, ``[100, 100]``, or either with a trailing
     channel axis of size 1; bool, integer or real float; nonzero is ink.
     """
+    from jdraw.geometry import CANVAS  # here: the command line checks options without JAX
+
     x = _as_array(images, "images")
     shape = x.shape
     if x.ndim in (3, 4) and x.shape[-1] == 1 and x.shape[-3:-1] == (CANVAS, CANVAS):

@@ -1,7 +1,13 @@
 import os
+import tempfile
 
 # Tests run on the CPU with a small, fixed thread budget; no test asserts on time.
 os.environ.setdefault("JAX_PLATFORMS", "cpu")
+# The persistent compilation cache (jdraw.compile_cache) goes to a temporary folder, never
+# the user's ~/.cache; kept between runs on one machine, so a second run compiles less.
+os.environ.setdefault(
+    "JDRAW_CACHE_DIR", os.path.join(tempfile.gettempdir(), f"jdraw-test-cache-{os.getuid()}")
+)
 
 import numpy as np
 import pytest

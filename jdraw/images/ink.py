@@ -36,8 +36,9 @@ def detect_polarity(gray: np.ndarray) -> str:
     Ink is the sparse, far-from-background tail of the brightness distribution
     once the slowly varying background is removed; its sign is the skew's.
     """
-    d = gray - _median_background(gray)
-    d = d - d.mean()
+    d = _median_background(gray)
+    np.subtract(gray, d, out=d)  # in place: big images hold fewer full-size copies
+    d -= d.mean()
     skew = float(np.mean(d**3)) / max(float(np.mean(d**2)) ** 1.5, 1e-12)
     return "light" if skew > 0 else "dark"
 
@@ -102,10 +103,14 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     # Evaluate on the full grid: pixel centres mapped to the small image's frame.
     gx = ((np.arange(w) + 0.5) * sw / w - 0.5) / (sw - 1) * 2 - 1
     gy = ((np.arange(h) + 0.5) * sh / h - 0.5) / (sh - 1) * 2 - 1
-    out = np.zeros((h, w))
-    for c, (i, j) in zip(coef, powers):
-        out += c * np.outer(gy**j, gx**i)
-    return out.astype(np.float32)
+    out = np.empty((h, w), np.float32)
+    rows = max(1, (1 << 22) // w)  # float64 sums over bands of ~32 MB, not the whole image
+    for r0 in range(0, h, rows):
+        band = np.zeros((min(rows, h - r0), w))
+        for c, (i, j) in zip(coef, powers):
+            band += c * np.outer(gy[r0 : r0 + rows] ** j, gx**i)
+        out[r0 : r0 + rows] = band
+    return out
 
 
 def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]:
@@ -132,23 +137,35 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
         raise ValueError(f"polarity must be 'auto', 'dark' or 'light', got {polarity!r}")
     if polarity == "auto":
         polarity = detect_polarity(gray)
-    g = cv2.GaussianBlur(gray.astype(np.float32), (0, 0), 1.0)
-    bg = background(g, polarity)
-    sign = -1.0 if polarity == "light" else 1.0
-    contrast = sign * (1.0 - g / np.maximum(bg, 0.02))
+    g = cv2.GaussianBlur(np.asarray(gray, np.float32), (0, 0), 1.0)
+    # contrast = sign * (1 - g / max(bg, 0.02)), computed in place: the same float32
+    # values with one full-size array instead of four (a 100 Mpx scan is 400 MB each).
+    contrast = background(g, polarity)
+    np.maximum(contrast, 0.02, out=contrast)
+    np.divide(g, contrast, out=contrast)
+    np.subtract(1.0, contrast, out=contrast)
+    if polarity == "light":
+        np.negative(contrast, out=contrast)
+    shape = g.shape
+    del g
     ink0 = contrast > filters.threshold_otsu(contrast)
     ground = (~cv2.dilate(ink0.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)).astype(
         np.float32
     )
     if ground.mean() > 0.05:
-        contrast = contrast - _masked_blur(contrast, ground, max(g.shape) / 10.0)
+        contrast -= _masked_blur(contrast, ground, max(shape) / 10.0)
         ink0 = contrast > filters.threshold_otsu(contrast)
+    del ground
     background_px = contrast[~ink0]
     if not ink0.any() or background_px.size == 0:
         raise BlankImageError("no ink found (the image is blank)")
     level = float(np.median(contrast[ink0]))
-    noise = 1.4826 * float(np.median(np.abs(background_px - np.median(background_px))))
-    base = float(np.median(background_px))
+    # Medians reorder their (own, temporary) input in place rather than copy it.
+    med = np.median(background_px, overwrite_input=True)
+    base = float(med)
+    np.abs(np.subtract(background_px, med, out=background_px), out=background_px)
+    noise = 1.4826 * float(np.median(background_px, overwrite_input=True))
+    del background_px
     if level - base < max(0.06, 6.0 * noise):
         raise BlankImageError("no ink found (nothing stands out from the background)")
     return contrast > base + 0.5 * (level - base), polarity

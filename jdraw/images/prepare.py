@@ -52,6 +52,8 @@ def prepare(image: np.ndarray, *, polarity: str = "auto") -> Prepared:
     """
     gray = to_gray(image)
     ink, polarity = binarize(gray, polarity)
+    shape = gray.shape
+    del gray  # the largest array of a big scan: not held while thinning
     width = stroke_width(ink)
     ink = denoise(ink, width)
     if not ink.any():
@@ -64,4 +66,4 @@ def prepare(image: np.ndarray, *, polarity: str = "auto") -> Prepared:
         skel = prune_spurs(skel, dist, width)
         polylines = extend_ends(skeleton_polylines(skel), skel, dist, width)
     polylines = [simplify(p, 0.5) for p in polylines]
-    return Prepared(gray.shape, ink, skel, polylines, width, polarity)
+    return Prepared(shape, ink, skel, polylines, width, polarity)

@@ -7,7 +7,7 @@ integers, as in :mod:`jdraw.geometry`.
 from __future__ import annotations
 
 import numpy as np
-from skimage import measure, morphology
+from skimage import morphology
 
 _OFFSETS = ((-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1))  # (dy, dx)
 
@@ -155,16 +155,51 @@ def skeleton_polylines(skel: np.ndarray) -> list[np.ndarray]:
     return [pts[c] for c in _trace(nbrs)]
 
 
+def _deviation(p: np.ndarray, a: int, b: int) -> np.ndarray:
+    """Distance of ``p[a+1:b]`` to the segment ``p[a] -> p[b]``: ``float [b - a - 1]``.
+
+    Perpendicular where a point projects inside the segment, else the nearer
+    end's distance. The perpendicular is ``|<q, n>| - <p[a], n>`` with the unit
+    normal ``n`` from the segment's angle, as scikit-image's
+    ``approximate_polygon`` measures it, so both keep the same points.
+    """
+    (r0, c0), (r1, c1) = p[a], p[b]
+    dr, dc = r1 - r0, c1 - c0
+    q = p[a + 1 : b]
+    ang = -np.arctan2(dr, dc)
+    cos, sin = np.cos(ang), np.sin(ang)
+    dr0, dc0 = q[:, 0] - r0, q[:, 1] - c0
+    dr1, dc1 = q[:, 0] - r1, q[:, 1] - c1
+    inside = (dr0 * dr + dc0 * dc > 0) & (-dr1 * dr - dc1 * dc > 0)
+    perp = np.abs(q[:, 0] * cos + q[:, 1] * sin - (c0 * sin + r0 * cos))
+    ends = np.minimum(np.sqrt(dc0**2 + dr0**2), np.sqrt(dc1**2 + dr1**2))
+    return np.where(inside, perp, ends)
+
+
 def simplify(points: np.ndarray, tol: float) -> np.ndarray:
     """Ramer-Douglas-Peucker: drops points within ``tol`` of the kept polyline.
 
-    Distances are to the kept *segments* (``skimage.measure.approximate_polygon``),
-    so a stroke that doubles back keeps its turning point.
+    Distances are to the kept *segments* (:func:`_deviation`), so a stroke that
+    doubles back keeps its turning point. Written here rather than imported
+    from scikit-image, whose polygon module loads SciPy's signal and stats
+    packages (seconds at start-up).
     """
     pts = np.asarray(points, np.float64)
     if len(pts) < 3 or tol <= 0:
         return pts
-    return measure.approximate_polygon(pts, tol)
+    keep = np.zeros(len(pts), bool)
+    keep[[0, -1]] = True
+    todo = [(0, len(pts) - 1)]
+    while todo:
+        a, b = todo.pop()
+        if b - a < 2:
+            continue
+        d = _deviation(pts, a, b)
+        if d.max() > tol:
+            m = a + 1 + int(np.argmax(d))
+            keep[m] = True
+            todo += [(m, b), (a, m)]
+    return pts[keep]
 
 
 def join_straight(polys: dict, ends_at: dict, reach: int, straight: float = 35) -> list:

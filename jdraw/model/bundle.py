@@ -119,7 +119,9 @@ def load(bundle_dir):
     bundle_dir = pathlib.Path(bundle_dir)
     meta = read_meta(bundle_dir)
     try:
-        mdl = M.build(ConfigDict(meta["model"]))
+        # Shapes only: the weights come from the file, so no initialiser runs (each
+        # would be one more small XLA compilation on a fresh machine).
+        mdl = nnx.eval_shape(lambda: M.build(ConfigDict(meta["model"])))
     except (ValueError, TypeError, KeyError) as e:
         raise BundleError(f"{bundle_dir / 'bundle.json'}: bad model config ({e})") from e
     path = bundle_dir / "params.npz"
@@ -130,7 +132,8 @@ def load(bundle_dir):
         raise BundleError(f"{path}: missing") from e
     except (zipfile.BadZipFile, ValueError, OSError, EOFError) as e:
         raise BundleError(f"{path}: corrupt ({e})") from e
-    expected = state_arrays(mdl)
+    flat = traverse_util.flatten_dict(nnx.to_pure_dict(nnx.state(mdl)))
+    expected = {"/".join(map(str, k)): v for k, v in flat.items()}
     if set(arrays) != set(expected):
         miss, extra = sorted(set(expected) - set(arrays)), sorted(set(arrays) - set(expected))
         raise BundleError(
@@ -158,7 +161,8 @@ def fill(model, arrays: dict[str, np.ndarray], *, partial: bool = False) -> int:
     Raises:
       BundleError: when not ``partial`` and the arrays do not fit the model.
     """
-    expected = state_arrays(model)
+    flat = traverse_util.flatten_dict(nnx.to_pure_dict(nnx.state(model)))
+    expected = {"/".join(map(str, k)): v for k, v in flat.items()}  # arrays or shapes only
     use = {k: a for k, a in arrays.items() if k in expected and a.shape == expected[k].shape}
     if not partial and len(use) != len(expected):
         bad = sorted(set(expected) - set(use))
@@ -196,7 +200,8 @@ def load_net(bundle_dir, stem: str, build):
     d = pathlib.Path(bundle_dir)
     if not (d / f"{stem}.json").exists():
         return None
-    model = build(json.loads((d / f"{stem}.json").read_text()))
+    meta = json.loads((d / f"{stem}.json").read_text())
+    model = nnx.eval_shape(lambda: build(meta))  # shapes only: the arrays come from the npz
     try:
         with np.load(d / f"{stem}.npz") as z:
             arrays = {k: z[k] for k in z.files}

@@ -11,9 +11,9 @@ import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
-from jdraw import geometry, state, validate
+from jdraw import compile_cache, geometry, state, validate
 from jdraw.model import bundle, checkpoints
-from jdraw.planner import global_only, slots
+from jdraw.planner import executables, global_only, slots
 from jdraw.planner import loop as planner
 from jdraw.plans import Plan
 
@@ -200,6 +200,17 @@ def _streamer(graphdef, limits, local_encoding: str, width: int, global_batch: i
     return jax.jit(many)
 
 
+_EXECUTABLES: dict = {}  # (jitted function, argument shapes) -> its compiled program
+
+
+def _executable(fn, static, args, devices):
+    """``fn`` compiled for ``args``: in memory, else from jdraw's program store on disk."""
+    k = (fn, executables.key("stream", static, args, devices))
+    if k not in _EXECUTABLES:
+        _EXECUTABLES[k] = executables.compiled("stream", fn, static, args, devices)
+    return _EXECUTABLES[k]
+
+
 def stream_plan(
     model, targets, labels, limits, local_encoding="window", width=64, global_batch=4, devices=None
 ) -> slots.Stream:
@@ -226,7 +237,18 @@ def stream_plan(
         keep.extend(range(j * qd, j * qd + m))
     graphdef, st = nnx.split(model)
     fn = _streamer(graphdef, limits, local_encoding, width, global_batch, devices)
-    out = jax.device_get(fn(st, tq, lq, counts))
+    static = (graphdef, limits, local_encoding, width, global_batch)
+    args = (st, tq, lq, counts)
+    exe = _executable(fn, static, args, devices)
+    try:
+        out = jax.device_get(exe(*args))
+    except jax.errors.JaxRuntimeError:
+        if exe is fn:
+            raise
+        # A stored program that does not run (a broken or foreign file): drop it, use the jit.
+        executables.forget("stream", static, args, devices)
+        _EXECUTABLES[(fn, executables.key("stream", static, args, devices))] = fn
+        out = jax.device_get(fn(*args))
     keep = np.asarray(keep, int)
     return out._replace(
         actions=out.actions[keep], length=out.length[keep], truncated=out.truncated[keep]
@@ -295,6 +317,7 @@ def plan(
     from jdraw.images import canonical
     from jdraw.planner import ranker
 
+    compile_cache.enable()
     if order not in ("auto", *ranker.ORDERS):
         raise ValueError(f"order must be 'auto' or one of {ranker.ORDERS}, got {order!r}")
     targets = drawn = as_targets(images)

@@ -33,7 +33,8 @@ bundle's json files keep them, and tests/test_pipeline.py compares them).
 Wall time on the 2-core CPU: about 51 min, the sum of the stages' recorded
 times (training loops 2,105 s and 298 s, tracing and fits about 586 s and
 68 s; the bundle's json files), not one fresh run of this command; loading,
-compiling and validation add a few minutes. The tiny variant: about a minute.
+compiling and validation add a few minutes. The tiny variant: 2 min 20 s and
+2 min 39 s in two runs on the CPU shared with other jobs; its bundle plans, badly.
 Result: README.md ("Beyond the paper") and docs/results.md.
 """
 

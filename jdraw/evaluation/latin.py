@@ -40,15 +40,18 @@ def drawings(ks: kanji.KanjiSet, copies: int, style: str, seed: int = 0, strengt
 def evaluate_latin(
     checkpoint=None,
     *,
-    split: str = "dev",
+    glyphs: str = "dev",
     copies: int = 4,
     styles=STYLES,
     batch: int = 32,
     progress: bool = True,
     **plan_kw,
 ) -> dict:
-    """Scores ``checkpoint`` on the Latin ``split``; ``{style: metrics}`` in its default order."""
-    ks = latin.load(split)
+    """Scores ``checkpoint`` on the Latin ``glyphs`` split; ``{style: metrics}`` in its order.
+
+    ``plan_kw`` goes to ``jdraw.plan`` (its ``split=`` is the learned splitter's switch).
+    """
+    ks = latin.load(glyphs)
     rk = api.load_ranker(checkpoint)
     order = "ranker" if rk is not None else "model"
     out = {"glyphs": "".join(chr(int(c)) for c in ks.codes), "copies": copies}

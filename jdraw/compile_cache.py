@@ -88,8 +88,8 @@ def enable() -> pathlib.Path | None:
             stacklevel=2,
         )
         return None
-    # Small programs too: on a 2-core CPU even the 0.2 s ones add up.
-    jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.1)
+    # Every program, however small: reading one back is cheaper than tracing it again.
+    jax.config.update("jax_persistent_cache_min_compile_time_secs", 0.0)
     cc.set_cache_dir(str(folder))
     cc.reset_cache()  # a compilation before this one must not pin "no cache" for the process
     _STATE["dir"] = folder

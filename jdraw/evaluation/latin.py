@@ -15,7 +15,7 @@ import numpy as np
 from jdraw.data import demos as D
 from jdraw.data import kanji, latin, variants
 from jdraw.evaluation import metrics
-from jdraw.evaluation.evaluate import plan_batched
+from jdraw.evaluation.batched import plan_batched
 from jdraw.planner import plan as api
 from jdraw.planner import ranker
 

@@ -115,3 +115,26 @@ def compiled(name: str, fn, static: tuple, args: tuple, devices):
     except Exception:  # noqa: BLE001 - not storable or not writable: plan without storing
         pass
     return exe
+
+
+_MEMO: dict = {}  # (jitted function, key) -> its compiled program (or the function itself)
+
+
+def run(name: str, fn, static, args, devices):
+    """``fn(*args)`` by its compiled program: kept in memory, else from the store on disk.
+
+    A stored program that does not run (a broken or foreign file) is dropped
+    and the jitted function used from then on.
+    """
+    k = (fn, key(name, static, args, devices))
+    if k not in _MEMO:
+        _MEMO[k] = compiled(name, fn, static, args, devices)
+    exe = _MEMO[k]
+    try:
+        return exe(*args)
+    except jax.errors.JaxRuntimeError:
+        if exe is fn:
+            raise
+        forget(name, static, args, devices)
+        _MEMO[k] = fn
+        return fn(*args)

@@ -200,17 +200,6 @@ def _streamer(graphdef, limits, local_encoding: str, width: int, global_batch: i
     return jax.jit(many)
 
 
-_EXECUTABLES: dict = {}  # (jitted function, argument shapes) -> its compiled program
-
-
-def _executable(fn, static, args, devices):
-    """``fn`` compiled for ``args``: in memory, else from jdraw's program store on disk."""
-    k = (fn, executables.key("stream", static, args, devices))
-    if k not in _EXECUTABLES:
-        _EXECUTABLES[k] = executables.compiled("stream", fn, static, args, devices)
-    return _EXECUTABLES[k]
-
-
 def stream_plan(
     model, targets, labels, limits, local_encoding="window", width=64, global_batch=4, devices=None
 ) -> slots.Stream:
@@ -239,16 +228,7 @@ def stream_plan(
     fn = _streamer(graphdef, limits, local_encoding, width, global_batch, devices)
     static = (graphdef, limits, local_encoding, width, global_batch)
     args = (st, tq, lq, counts)
-    exe = _executable(fn, static, args, devices)
-    try:
-        out = jax.device_get(exe(*args))
-    except jax.errors.JaxRuntimeError:
-        if exe is fn:
-            raise
-        # A stored program that does not run (a broken or foreign file): drop it, use the jit.
-        executables.forget("stream", static, args, devices)
-        _EXECUTABLES[(fn, executables.key("stream", static, args, devices))] = fn
-        out = jax.device_get(fn(*args))
+    out = jax.device_get(executables.run("stream", fn, static, args, devices))
     keep = np.asarray(keep, int)
     return out._replace(
         actions=out.actions[keep], length=out.length[keep], truncated=out.truncated[keep]

@@ -21,243 +21,18 @@ snapped onto the skeleton, so strokes lie on the ink's centreline.
 
 from __future__ import annotations
 
-import dataclasses
 import os
 from collections.abc import Callable, Iterable, Iterator, Sequence
 
 import numpy as np
-from scipy.spatial import cKDTree
 from tqdm.auto import tqdm
 
-from jdraw import geometry, validate
-from jdraw.images.canvas import CanvasTransform
-from jdraw.images.load import MAX_PIXELS, check_pixels, load_image
-from jdraw.images.prepare import Prepared, prepare
-from jdraw.images.skeleton import simplify, skeleton_polylines
+from jdraw.images.load import MAX_PIXELS
 from jdraw.planner.plan import plan as default_planner
-from jdraw.tiling.layout import Tile, choose_scale, layout
-from jdraw.tiling.stitch import stitch
+from jdraw.tiling.layout import Tile
+from jdraw.tiling.tiles import ImagePlan, _finish, _Job, _lay_out, _plan_tiles, _settings
 
-CANVAS = geometry.CANVAS
 Planner = Callable[..., object]
-
-
-@dataclasses.dataclass
-class ImagePlan:
-    """A plan for one image of any size, in input pixel coordinates.
-
-    Attributes:
-      strokes: ``[n, 2]`` float (x, y) input-pixel polylines drawn with the pen
-        down, in drawing order.
-      shape: ``(H, W)`` of the input image.
-      prepared: the binarised image and its centrelines.
-      scale: canvas pixels per input pixel used for planning.
-      tiles: every planner input, in planning order.
-      regions: ``(x0, y0, x1, y1)`` input-pixel box of each region, in drawing order.
-      truncated: number of tiles whose plan hit the step bound.
-      completed_pixels: canvas pixels a truncated plan left undrawn and that
-        were traced along the skeleton instead.
-      border_joins: strokes joined across a tile border.
-      border_breaks: stroke ends next to ink across a tile border that were
-        left unjoined (a pen lift at the border).
-      lift_joins: pen lifts inside a tile removed by joining strokes that
-        continue each other (``join_lifts``).
-      fragments: planned pieces dropped because other strokes draw all their pixels.
-      direction: ``"ltr"`` or ``"rtl"``, the reading direction planned in.
-    """
-
-    strokes: list[np.ndarray]
-    shape: tuple[int, int]
-    prepared: Prepared
-    scale: float
-    tiles: list[Tile]
-    regions: list[tuple[float, float, float, float]]
-    truncated: int = 0
-    completed_pixels: int = 0
-    border_joins: int = 0
-    border_breaks: int = 0
-    lift_joins: int = 0
-    fragments: int = 0
-    direction: str = "ltr"
-
-    def pen_down_length(self) -> float:
-        """Total length drawn, input pixels."""
-        return float(sum(np.hypot(*np.diff(s, axis=0).T).sum() for s in self.strokes if len(s) > 1))
-
-
-def _run_planner(planner, images, checkpoint, max_steps, split=None, batch_size=16, direction=None):
-    kwargs = {} if split is None else {"split": split}
-    if direction is not None:
-        kwargs["direction"] = direction
-    if checkpoint is not None:
-        kwargs["checkpoint"] = checkpoint
-    if max_steps is not None:
-        kwargs["max_steps"] = max_steps
-    n = len(images)
-    # Two batch shapes only, so a jitted planner compiles at most two programs for any
-    # mix of drawings: one tile (a character, the small one-slot program) or a full batch
-    # (every tiled drawing and every set of images share it).
-    size = 1 if n == 1 else max(n, 1 << (batch_size - 1).bit_length())
-    batch = np.zeros((size, CANVAS, CANVAS), bool)
-    batch[:n] = np.stack(images)
-    plan = planner(batch, **kwargs)
-    return plan.strokes[:n], np.asarray(plan.truncated, bool).reshape(-1)[:n]
-
-
-def _complete(tile: np.ndarray, strokes: list[np.ndarray]) -> tuple[list[np.ndarray], int]:
-    """Appends skeleton-traced strokes for ink a (truncated) plan left undrawn."""
-    left = tile & ~geometry.render_strokes(strokes, tile.shape)
-    if not left.any():
-        return strokes, 0
-    return strokes + [p.astype(np.float64) for p in skeleton_polylines(left)], int(left.sum())
-
-
-def _snap(points: np.ndarray, tree, skel_pts: np.ndarray, radius: float) -> np.ndarray:
-    d, i = tree.query(points, distance_upper_bound=radius)
-    ok = np.isfinite(d)
-    out = points.copy()
-    out[ok] = skel_pts[i[ok]]
-    keep = np.ones(len(out), bool)
-    keep[1:] = np.any(out[1:] != out[:-1], axis=1)
-    return out[keep]
-
-
-@dataclasses.dataclass
-class _Job:
-    """One image between layout and stitching: its tiles and, once planned, their strokes."""
-
-    prep: Prepared
-    scale: float
-    tiles: list[Tile]
-    regions: list
-    single: bool
-    direction: str = "ltr"
-    planned: list = dataclasses.field(default_factory=list)
-    truncated: int = 0
-    completed: int = 0
-
-    @property
-    def done(self) -> bool:
-        return len(self.planned) == len(self.tiles)
-
-
-def _settings(
-    planner, checkpoint, split, max_steps, polarity, min_gap, batch_size, simplify_tol, direction
-):
-    if direction is not None:
-        validate.choice("direction", direction, ("ltr", "rtl"))
-    if planner is None:
-        planner = default_planner
-        checkpoint = validate.checkpoint(checkpoint)
-    elif split is not None:
-        raise validate.InputError("split= is jdraw.plan's option; give it to your planner")
-    return dict(
-        planner=planner,
-        checkpoint=checkpoint,
-        split=split,
-        max_steps=validate.positive_int("max_steps", max_steps, optional=True),
-        polarity=validate.choice("polarity", polarity, ("auto", "dark", "light")),
-        min_gap=validate.positive("min_gap", min_gap),
-        batch_size=validate.positive_int("batch_size", batch_size),
-        simplify_tol=validate.positive("simplify_tol", simplify_tol, zero=True),
-        direction=direction,
-    )
-
-
-def _lay_out(
-    image, polarity: str, min_gap: float, max_pixels, flag="max_pixels=", direction=None
-) -> _Job:
-    if isinstance(image, str | os.PathLike):
-        image = validate.any_image(load_image(image, max_pixels, flag))
-    else:
-        image = validate.any_image(image)
-        h, w = image.shape[:2]
-        check_pixels((w, h), max_pixels, f"image of shape {image.shape}")
-    prep = prepare(image, polarity=polarity)
-    if direction is None:
-        from jdraw.images import reading
-
-        direction = reading.detect(prep)
-    scale, tiles, regions = layout(prep, min_gap, rtl=direction == "rtl")
-    return _Job(prep, scale, tiles, regions, choose_scale(prep, min_gap)[1], direction)
-
-
-def _plan_tiles(pending: list[tuple[_Job, Tile]], cfg: dict) -> None:
-    """Plans ``pending`` tiles (of one or more images) in one planner call; fills their jobs.
-
-    Tiles of images read right to left go in a call of their own, whose ranker
-    orders right to left (the default planner only; a custom one is left as is).
-    """
-    own = cfg["planner"] is default_planner
-    groups = [[p for p in pending if p[0].direction == d] for d in ("ltr", "rtl")]
-    results = {}
-    for d, group in zip(("ltr", "rtl"), groups):
-        if not group:
-            continue
-        strokes, trunc = _run_planner(
-            cfg["planner"],
-            [t.image for _, t in group],
-            cfg["checkpoint"],
-            cfg["max_steps"],
-            cfg["split"],
-            cfg["batch_size"],
-            "rtl" if d == "rtl" and own else None,
-        )
-        for p, s, tr in zip(group, strokes, trunc, strict=True):
-            results[id(p[1])] = (s, tr)
-    for job, t in pending:
-        s, tr = results[id(t)]
-        s, n = _complete(t.image, [np.asarray(p, np.float64).reshape(-1, 2) for p in s])
-        job.completed += n
-        job.truncated += int(tr)
-        job.planned.append(s)
-
-
-def _finish(job: _Job, simplify_tol: float, join_lifts: bool) -> ImagePlan:
-    """Stitches a planned job's tiles and maps the strokes back onto the input's centrelines."""
-    prep, scale, tiles, regions, planned = job.prep, job.scale, job.tiles, job.regions, job.planned
-    skel_pts = np.argwhere(prep.skeleton)[:, ::-1].astype(np.float64)
-    tree = cKDTree(skel_pts)
-    radius = 0.75 / scale + 1.0
-    out: list[np.ndarray] = []
-    report: dict = {}
-    for r in range(len(regions)):
-        idx = [i for i, t in enumerate(tiles) if t.region == r]
-        if job.single:
-            t = tiles[idx[0]]
-            region_strokes = [t.transform.to_input(np.floor(p + 0.5)) for p in planned[idx[0]]]
-        else:
-            # Pieces in the frame of the whole-drawing canvas, where tiles abut.
-            base = CanvasTransform(scale)
-            pieces = []
-            for i in idx:
-                dx = base.offset[0] - tiles[i].transform.offset[0]
-                dy = base.offset[1] - tiles[i].transform.offset[1]
-                for p in planned[i]:
-                    if len(p):
-                        pieces.append((i, (np.floor(p + 0.5) + (dx, dy)).astype(np.int64)))
-            knobs = {} if join_lifts else {"smooth_cos": -2.0, "fragment": 0}
-            region_strokes = [base.to_input(p) for p in stitch(pieces, report, **knobs)]
-        for p in region_strokes:
-            if len(p) == 0:
-                continue
-            p = _snap(p, tree, skel_pts, radius)
-            out.append(simplify(p, simplify_tol) if len(p) > 2 else p)
-    return ImagePlan(
-        out,
-        prep.shape,
-        prep,
-        scale,
-        tiles,
-        regions,
-        job.truncated,
-        job.completed,
-        report.get("joins", 0),
-        report.get("breaks", 0),
-        report.get("lift_joins", 0),
-        report.get("fragments", 0),
-        job.direction,
-    )
 
 
 def plan_images(
@@ -306,6 +81,7 @@ def plan_images(
         batch_size,
         simplify_tol,
         direction,
+        default_planner,
     )
     items = list(images) if not isinstance(images, Iterator) else images
     total = len(items) if isinstance(items, list) else None
@@ -430,6 +206,7 @@ def plan_image(
         batch_size,
         simplify_tol,
         direction,
+        default_planner,
     )
     job = _lay_out(image, cfg["polarity"], cfg["min_gap"], max_pixels, direction=cfg["direction"])
     batches = range(0, len(job.tiles), cfg["batch_size"])

@@ -93,3 +93,19 @@ def test_process_settings_from_flags_or_environment():
         distributed.settings("h:1", 2, 2, environ={})
     with pytest.raises(ValueError, match="coordinator"):
         distributed.settings(None, 2, 0, environ={})
+
+
+def test_mix_variant_adds_other_scripts_to_the_nets_only():
+    base, mix = default.get_config().to_dict(), default.get_config("mix").to_dict()
+    for name in ("local", "start"):
+        assert mix["stages"][name] == base["stages"][name]
+    assert mix["stages"]["splitter"]["extra"] == {"latin": 1500, "cursive": 2000}
+    assert mix["stages"]["ranker"]["tracer_split"] == "stage:splitter"
+    tiny = default.get_config("mix_tiny")
+    assert all(v == 4 for n in ("splitter", "ranker") for v in tiny.stages[n].extra.values())
+    # Every extra set named there is one jdraw.data.mix can load.
+    from jdraw.data import mix as sets
+
+    for name in mix["stages"]["splitter"]["extra"]:
+        ks, pool = sets.load(name, progress=False)
+        assert len(pool) > 0

@@ -176,6 +176,9 @@ def rtl_score(prep: Prepared, net: DirectionNet | None = None) -> float:
 
 def detect(prep: Prepared, net: DirectionNet | None = None) -> str:
     """``"rtl"`` or ``"ltr"``: the reading direction of a prepared drawing (see the module doc)."""
+    from jdraw import compile_cache
+
+    compile_cache.enable()  # plan_image reads the direction before its first jdraw.plan
     return "rtl" if rtl_score(prep, net) > THRESHOLD else "ltr"
 
 

@@ -8,7 +8,7 @@ EMS Allure (SIL Open Font License, ``OFL.txt`` beside the output) is a joined
 single-line script: each glyph is one or more polylines (``M x y L x y ...``)
 in font units, y up, 1000 units to the em. Only the glyphs in ``CHARS`` are
 kept, unchanged, except that a subpath repeated within a glyph is dropped
-(EMS Allure's N draws its serif twice). The Hershey fonts beside it in the
+(EMS Allure's N draws its serif twice). The other font families beside it in the
 package are held out for evaluation and are never read.
 """
 

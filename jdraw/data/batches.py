@@ -21,9 +21,16 @@ from jdraw.data.kanji import KanjiSet
 CANVAS = geometry.CANVAS
 
 
-def _sample(ks: KanjiSet, pool, rng, strength: float, styles) -> D.Demo:
-    """A random character of ``pool``: jdraw's own lines, or a style of ``styles``."""
-    i = int(rng.choice(pool))
+def _sample(ks, pool, rng, strength: float, styles) -> D.Demo:
+    """A random character of ``pool``: jdraw's own lines, or a style of ``styles``.
+
+    ``ks`` may be a :class:`jdraw.data.mix.Mixture` (``pool`` unused): the
+    character then comes from one of its sets.
+    """
+    if isinstance(ks, KanjiSet):
+        i = int(rng.choice(pool))
+    else:
+        ks, i = ks.pick(rng)
     if not styles:
         return D.sample(ks, i, rng, strength)
     return variants.sample(ks, i, rng, strength, styles)

@@ -281,9 +281,9 @@ def fragments(
     ``[p0, p0 + d/3, p0 + 2d/3, p1]``).
 
     Strokes that land on the next letter go back over part of it (module
-    docstring): make their demonstrations with
-    ``jdraw.data.demos.sample(ks, i, rng, keep_turns=True)``, or the way back
-    erases that part of the line from the demonstration and its target.
+    docstring), so the set says ``keep_turns``: its demonstrations
+    (:func:`jdraw.data.demos.sample`, :func:`jdraw.data.variants.sample`)
+    keep the way back instead of erasing that part of the line.
 
     Returns:
       a :class:`jdraw.data.kanji.KanjiSet`: ``names`` like ``"hello[1:4]"``,
@@ -292,7 +292,7 @@ def fragments(
     """
     words = split_words(split)
     index = {w: i for i, w in enumerate(dict.fromkeys(WORDS))}
-    names, codes, n_strokes, n_segs, ctrl = [], [], [], [], []
+    names, codes, chars = [], [], []
     for w in words:
         for n in range(min_letters, min(max_letters, len(w)) + 1):
             for s in range(len(w) - n + 1):
@@ -300,18 +300,9 @@ def fragments(
                 scale, offset = fit(strokes)
                 if scale < min_scale:
                     continue
-                cubics = [to_cubics(p * scale + offset) for p in strokes if len(p) > 1]
+                chars.append([to_cubics(p * scale + offset) for p in strokes if len(p) > 1])
                 names.append(f"{w}[{s}:{s + n}]")
                 codes.append(1000 * index[w] + 30 * s + s + n)
-                n_strokes.append(len(cubics))
-                n_segs.extend(len(c) for c in cubics)
-                ctrl.extend(cubics)
     if not names:
         raise ValueError(f"no fragment of the {split!r} words fits at min_scale={min_scale}")
-    return KanjiSet(
-        names=np.asarray(names),
-        codes=np.asarray(codes, np.int64),
-        stroke_start=np.concatenate([[0], np.cumsum(n_strokes)]).astype(np.int64),
-        seg_start=np.concatenate([[0], np.cumsum(n_segs)]).astype(np.int64),
-        ctrl=np.concatenate(ctrl).astype(np.float32),
-    )
+    return KanjiSet.from_strokes(names, codes, chars, keep_turns=True)

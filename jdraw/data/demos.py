@@ -124,12 +124,15 @@ def sample(
     i: int,
     rng: np.random.Generator | None = None,
     strength=1.0,
-    keep_turns: bool = False,
+    keep_turns: bool | None = None,
 ) -> Demo:
     """Demonstration of character ``i``, augmented when ``rng`` is given.
 
-    ``keep_turns``: see :func:`clean_path` (True for :func:`jdraw.data.cursive.fragments`).
+    ``keep_turns``: see :func:`clean_path`; None takes the set's own
+    (``ks.keep_turns``: True for cursive words and scribbles).
     """
+    if keep_turns is None:
+        keep_turns = bool(getattr(ks, "keep_turns", False))
     strokes = ks.strokes(i)
     affine = None
     if rng is not None and strength > 0:

@@ -82,6 +82,9 @@ class KanjiSet:
       stroke_start: ``[C + 1]`` offsets into the strokes of each character.
       seg_start: ``[S + 1]`` offsets into ``ctrl`` of each stroke.
       ctrl: ``[K, 4, 2]`` float32 cubic control points, canvas units.
+      keep_turns: strokes may go back over their own line (cursive words'
+        landings, scribbles' retraces): their demonstrations keep the way
+        back (:func:`jdraw.data.demos.clean_path`). False for KanjiVG.
     """
 
     names: np.ndarray
@@ -89,6 +92,21 @@ class KanjiSet:
     stroke_start: np.ndarray
     seg_start: np.ndarray
     ctrl: np.ndarray
+    keep_turns: bool = False
+
+    @classmethod
+    def from_strokes(cls, names, codes, chars, keep_turns: bool = False) -> KanjiSet:
+        """A set of ``chars``: per character a list of ``[K, 4, 2]`` cubic strokes."""
+        n_strokes = [len(c) for c in chars]
+        n_segs = [len(s) for c in chars for s in c]
+        return cls(
+            names=np.asarray(names),
+            codes=np.asarray(codes, np.int64),
+            stroke_start=np.concatenate([[0], np.cumsum(n_strokes)]).astype(np.int64),
+            seg_start=np.concatenate([[0], np.cumsum(n_segs)]).astype(np.int64),
+            ctrl=np.concatenate([s for c in chars for s in c]).astype(np.float32),
+            keep_turns=keep_turns,
+        )
 
     def __len__(self) -> int:
         return len(self.names)
@@ -123,7 +141,7 @@ def load(progress: bool = True) -> KanjiSet:
     cache = _cache_path()
     if cache.exists():
         z = np.load(cache)
-        return KanjiSet(**{k: z[k] for k in z.files})
+        return KanjiSet(**{k: z[k] for k in z.files if k != "keep_turns"})
     files = sorted(
         p for p in kanjivg_dir().glob("*.svg") if int(p.stem.split("-")[0], 16) >= FIRST_CODE
     )
@@ -131,26 +149,19 @@ def load(progress: bool = True) -> KanjiSet:
         from tqdm import tqdm
 
         files = tqdm(files, desc="parsing KanjiVG", unit="file")
-    names, codes, n_strokes, n_segs, ctrl = [], [], [], [], []
+    names, codes, chars = [], [], []
     for p in files:
         strokes = [s for s in parse_svg(p.read_text(encoding="utf-8")) if len(s)]
         if not strokes:
             continue
         names.append(p.stem)
         codes.append(int(p.stem.split("-")[0], 16))
-        n_strokes.append(len(strokes))
-        n_segs.extend(len(s) for s in strokes)
-        ctrl.extend(strokes)
-    ks = KanjiSet(
-        names=np.asarray(names),
-        codes=np.asarray(codes, np.int64),
-        stroke_start=np.concatenate([[0], np.cumsum(n_strokes)]).astype(np.int64),
-        seg_start=np.concatenate([[0], np.cumsum(n_segs)]).astype(np.int64),
-        ctrl=np.concatenate(ctrl).astype(np.float32),
-    )
+        chars.append(strokes)
+    ks = KanjiSet.from_strokes(names, codes, chars)
     cache.parent.mkdir(parents=True, exist_ok=True)
     tmp = cache.with_suffix(".tmp.npz")
-    np.savez(tmp, **dataclasses.asdict(ks))
+    arrays = {f.name: getattr(ks, f.name) for f in dataclasses.fields(ks) if f.name != "keep_turns"}
+    np.savez(tmp, **arrays)
     os.replace(tmp, cache)
     return ks
 

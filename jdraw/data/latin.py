@@ -241,18 +241,7 @@ def names(split: str) -> list[str]:
 def load(split: str | None = None) -> KanjiSet:
     """The glyphs (all, or a split's) as a :class:`KanjiSet` in the 100 x 100 canvas."""
     chosen = sorted(GLYPHS) if split is None else names(split)
-    names_, codes, n_strokes, n_segs, ctrl = [], [], [], [], []
-    for g in chosen:
-        strokes = [_cubics(p) for p in to_canvas(GLYPHS[g])]
-        names_.append(f"latin-{ord(g):04x}")
-        codes.append(ord(g))
-        n_strokes.append(len(strokes))
-        n_segs.extend(len(s) for s in strokes)
-        ctrl.extend(strokes)
-    return KanjiSet(
-        names=np.asarray(names_),
-        codes=np.asarray(codes, np.int64),
-        stroke_start=np.concatenate([[0], np.cumsum(n_strokes)]).astype(np.int64),
-        seg_start=np.concatenate([[0], np.cumsum(n_segs)]).astype(np.int64),
-        ctrl=np.concatenate(ctrl).astype(np.float32),
+    chars = [[_cubics(p) for p in to_canvas(GLYPHS[g])] for g in chosen]
+    return KanjiSet.from_strokes(
+        [f"latin-{ord(g):04x}" for g in chosen], [ord(g) for g in chosen], chars
     )

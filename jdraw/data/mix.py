@@ -1,12 +1,17 @@
-"""Training sets beyond KanjiVG, by name, for the tracer-trained parts (splitter, ranker).
+"""Training sets beyond KanjiVG, by name, and mixtures of them.
 
-A config's ``extra`` maps a set's name to how many augmented examples of it
-to trace beside the KanjiVG characters, e.g. ``{"latin": 1500}``. Each set is
-a :class:`jdraw.data.kanji.KanjiSet` with the pool of indices to draw from,
-so every pipeline that takes KanjiVG takes it unchanged.
+For the tracer-trained parts (splitter, ranker), a config's ``extra`` maps a
+set's name to how many augmented examples of it to trace beside the KanjiVG
+characters, e.g. ``{"latin": 1500}``. For the model stages (local and start
+models), ``data.extra`` maps a set's name to the share of characters drawn
+from it (:class:`Mixture`; KanjiVG takes the rest). Each set is a
+:class:`jdraw.data.kanji.KanjiSet` with the pool of indices to draw from, so
+every pipeline that takes KanjiVG takes it unchanged.
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 
@@ -29,7 +34,48 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
 
         ks = cursive.fragments("train")
         return ks, np.arange(len(ks))
-    raise ValueError(f"unknown training set {name!r}; expected 'kanji', 'latin' or 'cursive'")
+    if name == "scribble":
+        from jdraw.data import scribbles
+
+        ks = scribbles.load()
+        return ks, np.arange(len(ks))
+    raise ValueError(
+        f"unknown training set {name!r}; expected 'kanji', 'latin', 'cursive' or 'scribble'"
+    )
+
+
+@dataclasses.dataclass
+class Mixture:
+    """Several training sets, each character drawn from one of them at random.
+
+    Attributes:
+      sets: ``(ks, pool)`` per set, KanjiVG's first.
+      p: ``[len(sets)]`` float, the probability of each.
+      names: each set's name.
+    """
+
+    sets: list
+    p: np.ndarray
+    names: tuple
+
+    def pick(self, rng: np.random.Generator) -> tuple[KanjiSet, int]:
+        """``(ks, i)``: a set by :attr:`p`, then a character of its pool."""
+        ks, pool = self.sets[int(rng.choice(len(self.sets), p=self.p))]
+        return ks, int(rng.choice(pool))
+
+
+def mixture(kanji_set: KanjiSet, pool, extra, progress: bool = True) -> Mixture:
+    """KanjiVG (``kanji_set``, ``pool``) and the sets of ``extra`` (``{name: share}``).
+
+    KanjiVG takes ``1 - sum(shares)`` of the characters.
+    """
+    shares = {str(k): float(v) for k, v in dict(extra).items()}
+    rest = 1.0 - sum(shares.values())
+    if rest < 0 or any(v < 0 for v in shares.values()) or "kanji" in shares:
+        raise ValueError(f"data.extra {shares}: shares of other sets, >= 0, summing to <= 1")
+    sets = [(kanji_set, np.asarray(pool))] + [load(k, progress) for k in shares]
+    p = np.asarray([rest, *shares.values()], np.float64)
+    return Mixture(sets=sets, p=p / p.sum(), names=("kanji", *shares))
 
 
 def salt(name: str) -> int:

@@ -76,7 +76,9 @@ def _stroke_path(curve: np.ndarray, ink: np.ndarray, reach: float, every: float)
     The path keeps within ``reach`` pixels of the curve and passes, in
     order, the ink pixel nearest to a point of the curve every ``every``
     pixels of its length, so a loop or a stroke crossing itself is followed
-    round, not cut short.
+    round, not cut short. Between two such points it may use the ink within
+    ``reach`` of that part of the curve, so a stroke that goes back over its
+    own line (a cursive landing, a retrace) finds its way back too.
     """
     ys, xs = np.nonzero(ink)
     pix = np.stack([xs, ys], 1).astype(np.float64)
@@ -86,7 +88,6 @@ def _stroke_path(curve: np.ndarray, ink: np.ndarray, reach: float, every: float)
         return None
     pix, d = pix[near], d[near]
     along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(curve, axis=0), axis=1))])
-    t_of = along[d.argmin(1)]  # where along the curve each pixel sits
     n_way = max(1, int(np.ceil(along[-1] / every)))
     marks = np.linspace(0.0, along[-1], n_way + 1)
     way = []
@@ -100,7 +101,8 @@ def _stroke_path(curve: np.ndarray, ink: np.ndarray, reach: float, every: float)
     path: list[tuple] = [(int(pix[way[0], 1]), int(pix[way[0], 0]))]
     for i in range(n_way):
         lo, hi = marks[i] - every / 2, marks[i + 1] + every / 2
-        ok = (t_of >= lo) & (t_of <= hi)
+        part = (along >= lo) & (along <= hi)
+        ok = d[:, part].min(1) <= reach
         allowed = {(int(y), int(x)) for x, y in pix[ok]}
         a = path[-1]
         b = (int(pix[way[i + 1], 1]), int(pix[way[i + 1], 0]))
@@ -113,7 +115,13 @@ def _stroke_path(curve: np.ndarray, ink: np.ndarray, reach: float, every: float)
     return yx[:, ::-1]
 
 
-def on_lines(ctrl: list[np.ndarray], ink: np.ndarray, reach: float = 2.5, spare: float = 0.04):
+def on_lines(
+    ctrl: list[np.ndarray],
+    ink: np.ndarray,
+    reach: float = 2.5,
+    spare: float = 0.04,
+    keep_turns: bool = False,
+):
     """The demonstration of strokes ``ctrl`` laid onto 1-pixel lines ``ink``, or None.
 
     Each stroke becomes a path on ``ink`` within ``reach`` pixels of its
@@ -121,7 +129,8 @@ def on_lines(ctrl: list[np.ndarray], ink: np.ndarray, reach: float = 2.5, spare:
     :func:`jdraw.data.demos.from_control_points` cuts its own. None when a
     stroke finds no such path or more than a ``spare`` fraction (and 3) of
     the ink pixels lie on no stroke's path (a line the strokes do not
-    explain). The target is the union of the paths.
+    explain). The target is the union of the paths. ``keep_turns``: as
+    :func:`jdraw.data.demos.clean_path`.
     """
     strokes, target = [], np.zeros(ink.shape, bool)
     for c in ctrl:
@@ -129,7 +138,7 @@ def on_lines(ctrl: list[np.ndarray], ink: np.ndarray, reach: float = 2.5, spare:
         p = _stroke_path(curve, ink, reach, every=8.0)
         if p is None:
             return None
-        path = D.clean_path(p)
+        path = D.clean_path(p, keep_turns)
         strokes.append(D.decompose(path))
         target[path[:, 1], path[:, 0]] = True
     if np.count_nonzero(ink & ~target) > max(3, spare * np.count_nonzero(ink)):
@@ -149,6 +158,8 @@ def sample(ks: kanji.KanjiSet, i: int, rng: np.random.Generator, strength: float
       styles: ``{style: probability}``; ``"clean"`` is jdraw's own rasteriser,
         the rest are :data:`STYLES`, canonicalised. A drawing whose strokes do
         not lay onto its canonical lines (:func:`on_lines`) falls back to clean.
+        Strokes that go back over their line keep the way back when the set
+        says so (``ks.keep_turns``).
     """
     from jdraw.images import canonical
 
@@ -156,15 +167,16 @@ def sample(ks: kanji.KanjiSet, i: int, rng: np.random.Generator, strength: float
     p = np.asarray([styles[k] for k in names], float)
     style = names[int(rng.choice(len(names), p=p / p.sum()))]
     ctrl = ks.strokes(i)
+    turns = bool(getattr(ks, "keep_turns", False))
     if strength > 0:
         a, t = kanji.random_affine(rng, np.concatenate(ctrl), strength)
         ctrl = [c @ a.T + t for c in ctrl]
     if style == "clean":
-        return D.from_control_points(ctrl)
+        return D.from_control_points(ctrl, keep_turns=turns)
     drawn = draw(ctrl, style, step=float(rng.uniform(1.0, 3.0)))
     ink = canonical.canonicalise(drawn)
-    d = on_lines(ctrl, ink, reach=3.5 if style == "px5" else 2.5)
+    d = on_lines(ctrl, ink, reach=3.5 if style == "px5" else 2.5, keep_turns=turns)
     if d is None:
-        return D.from_control_points(ctrl)
+        return D.from_control_points(ctrl, keep_turns=turns)
     d.drawn = drawn
     return d

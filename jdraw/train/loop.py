@@ -20,7 +20,7 @@ from flax import nnx
 from jax.sharding import NamedSharding
 from jax.sharding import PartitionSpec as P
 
-from jdraw.data import kanji
+from jdraw.data import kanji, mix
 from jdraw.model import checkpoints
 from jdraw.train import distributed, feed, records
 from jdraw.train.step import create_state, make_step, model_of
@@ -106,6 +106,9 @@ def train(
     if cfg.data.get("chars"):
         pool = [int(i) for i in cfg.data.chars]
     val_idx = kanji.split_indices(ks, "val")[: cfg.eval.val_chars]
+    source = ks
+    if cfg.data.get("extra"):  # other scripts beside KanjiVG (jdraw.data.mix)
+        source = mix.mixture(ks, pool, cfg.data.extra, progress=progress)
 
     graphdef, tx, state = create_state(cfg)
     # Processes start together: Orbax's and the step's collectives wait 30 s at most.
@@ -126,7 +129,7 @@ def train(
 
     flag = {"stop": False}
     old_handler = _on_sigterm(flag)
-    pf = feed.Prefetcher(lambda s: feed.make_batch(ks, pool, cfg, s), start, end)
+    pf = feed.Prefetcher(lambda s: feed.make_batch(source, pool, cfg, s), start, end)
     bar = None
     if progress:
         from tqdm import tqdm

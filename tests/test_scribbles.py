@@ -1,0 +1,135 @@
+"""Demonstrations beyond KanjiVG for the model stages: scribbles, retraces, mixtures."""
+
+import numpy as np
+import pytest
+
+from jdraw import geometry
+from jdraw.data import batches, cursive, mix, scribbles, variants
+from jdraw.data import demos as demo
+from jdraw.data.kanji import CANVAS, KanjiSet
+
+
+def _repeats(stroke: np.ndarray) -> int:
+    """Pixels a stroke's 1-pixel path passes more than once."""
+    path = [tuple(p) for p in demo.clean_path(np.asarray(stroke), keep_turns=True)]
+    return len(path) - len(set(path))
+
+
+def test_scribbles_are_seeded_on_the_canvas_and_keep_their_turns():
+    a, b = scribbles.load(40, seed=3), scribbles.load(40, seed=3)
+    assert np.array_equal(a.ctrl, b.ctrl) and len(a) == 40
+    assert not np.array_equal(a.ctrl, scribbles.load(40, seed=4).ctrl)
+    assert a.keep_turns
+    assert a.ctrl.min() >= scribbles.MARGIN / 2 - 1e-6
+    assert a.ctrl.max() <= CANVAS - 1 - scribbles.MARGIN / 2 + 1e-6
+    counts = np.diff(a.stroke_start)
+    assert counts.min() >= 1 and counts.max() <= 3
+
+
+@pytest.mark.parametrize("kind", scribbles.KINDS)
+def test_each_kind_replays_to_its_target(kind):
+    rng = np.random.default_rng(0)
+    c = scribbles.curve(kind, rng)
+    c = (c - c.min(0)) / max(float(np.ptp(c, 0).max()), 1e-9) * 80 + 10
+    ks = KanjiSet.from_strokes(["s"], [0], [[cursive.to_cubics(c)]], keep_turns=True)
+    d = demo.sample(ks, 0)
+    assert len(d.strokes) == 1
+    assert np.array_equal(geometry.render_strokes([d.strokes[0].astype(float)]), d.target)
+    assert np.abs(np.diff(d.strokes[0], axis=0)).max() <= 2
+
+
+def _retrace_set() -> KanjiSet:
+    """One stroke: right along a line, back over half of it, then down."""
+    p = np.array([[20.0, 50.0], [80.0, 50.0], [50.0, 50.0], [50.0, 85.0]])
+    return KanjiSet.from_strokes(["r"], [0], [[cursive.to_cubics(p)]], keep_turns=True)
+
+
+def test_a_set_that_keeps_turns_draws_its_retrace_twice():
+    ks = _retrace_set()
+    d = demo.sample(ks, 0)
+    assert _repeats(d.strokes[0]) >= 25  # the way back over about 30 pixels
+    flat = demo.sample(ks, 0, keep_turns=False)
+    assert _repeats(flat.strokes[0]) == 0
+
+
+@pytest.mark.parametrize("style", ["cv2", "px3"])
+def test_a_retrace_lays_onto_lines_drawn_another_way(style):
+    """The stroke goes back over its own line: laid onto canonical lines it still does,
+    where each pixel nearest the first pass alone would have lost the way back."""
+    from jdraw.images import canonical
+
+    ks = _retrace_set()
+    ctrl = ks.strokes(0)
+    ink = canonical.canonicalise(variants.draw(ctrl, style))
+    d = variants.on_lines(ctrl, ink, keep_turns=True)
+    assert d is not None
+    assert _repeats(d.strokes[0]) >= 20
+    assert np.linalg.norm(d.strokes[0][-1] - [50, 85]) <= 4
+
+
+def test_mixture_draws_each_set_at_its_share(kanji_set):
+    pool = np.arange(50)
+    m = mix.mixture(kanji_set, pool, {"scribble": 0.3, "latin": 0.1}, progress=False)
+    assert m.names == ("kanji", "scribble", "latin")
+    rng = np.random.default_rng(0)
+    picks = [m.pick(rng) for _ in range(2000)]
+    share = {n: np.mean([ks is s[0] for ks, _ in picks]) for n, s in zip(m.names, m.sets)}
+    assert abs(share["kanji"] - 0.6) < 0.04 and abs(share["scribble"] - 0.3) < 0.04
+    assert all(i in pool for ks, i in picks if ks is kanji_set)
+    with pytest.raises(ValueError, match="shares"):
+        mix.mixture(kanji_set, pool, {"latin": 0.7, "cursive": 0.5}, progress=False)
+    with pytest.raises(ValueError, match="unknown training set"):
+        mix.mixture(kanji_set, pool, {"hershey": 0.1}, progress=False)
+
+
+def test_local_batches_from_a_mixture_are_seeded(kanji_set):
+    m = mix.mixture(kanji_set, np.arange(50), {"scribble": 0.5}, progress=False)
+    kw = dict(windows=256, strokes=16, max_len=48, per_char=4, strength=1.0)
+    a = batches.local_batch(m, None, np.random.default_rng(5), **kw)
+    b = batches.local_batch(m, None, np.random.default_rng(5), **kw)
+    assert a["n_strokes"] > 0
+    for k in ("target", "pts", "move", "slot_valid"):
+        assert np.array_equal(a[k], b[k])
+    only_kanji = batches.local_batch(kanji_set, np.arange(50), np.random.default_rng(5), **kw)
+    assert not np.array_equal(a["target"], only_kanji["target"])
+
+
+def test_a_model_stage_trains_on_a_mixture(tmp_path, monkeypatch):
+    """``data.extra`` reaches the batches: the run draws from the mixture it names."""
+    from configs import tiny
+    from jdraw.train import feed
+    from jdraw.train import loop as training
+
+    seen = []
+    real = feed.make_batch
+
+    def spy(source, pool, cfg, step):
+        seen.append(source)
+        return real(source, pool, cfg, step)
+
+    monkeypatch.setattr(feed, "make_batch", spy)
+    c = tiny.get_config()
+    c.train.update(num_steps=2, checkpoint_every=100, log_every=1)
+    c.data.extra = {"scribble": 0.5, "cursive": 0.25}
+    out = training.train(c, tmp_path, progress=False)
+    assert out["done"] and (tmp_path / "bundle" / "bundle.json").exists()
+    assert seen and all(isinstance(s, mix.Mixture) for s in seen)
+    shares = dict(zip(seen[0].names, seen[0].p))
+    assert shares == pytest.approx({"kanji": 0.25, "scribble": 0.5, "cursive": 0.25})
+
+
+def test_scripts_variant_names_sets_that_load():
+    from configs import default
+
+    base, c = default.get_config().to_dict(), default.get_config("scripts").to_dict()
+    for name in ("local", "start"):
+        extra = c["stages"][name]["data"]["extra"]
+        assert 0 < sum(extra.values()) < 1
+        assert {k: v for k, v in c["stages"][name].items() if k not in ("data", "name")} == {
+            k: v for k, v in base["stages"][name].items() if k not in ("data", "name")
+        }
+    assert "scribble" not in c["stages"]["start"]["data"]["extra"]  # its starts mean nothing
+    names = set(c["stages"]["local"]["data"]["extra"]) | set(c["stages"]["splitter"]["extra"])
+    for name in names:
+        ks, pool = mix.load(name, progress=False)
+        assert len(pool) > 0

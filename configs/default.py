@@ -161,11 +161,13 @@ def tiny(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
 def mix(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     """Splitter and ranker also trained on Latin letters and cursive words (docs/scripts.md).
 
-    Not the bundled default: it writes Latin letters better (dev glyphs: order over
-    all pairs 0.881 -> 0.923, direction 0.821 -> 0.923, stroke accuracy 0.879 ->
-    0.904) but orders KanjiVG's test split a little worse (0.9582 -> 0.9520).
-    Its splitter traces 5,000 of the KanjiVG characters and ``extra`` other
-    scripts (jdraw.data.mix); its ranker orders the strokes that splitter leaves.
+    Not the bundled default: with the default's local and start models, its
+    splitter traces all 9,000 KanjiVG characters plus ``extra`` other scripts
+    (jdraw.data.mix) and its ranker orders the strokes that splitter leaves
+    (runs/mix9k, 21 min of tracing). Latin dev glyphs: stroke accuracy 0.879
+    -> 0.912, order over all pairs 0.881 -> 0.869, direction 0.821 -> 0.940;
+    KanjiVG's test split: order over all pairs 0.9582 -> 0.9538, stroke
+    accuracy 0.9870 -> 0.9865 (results/beyond_mix9k.json).
     """
     c.name = "default_mix"
     c.stages.splitter.extra = dict(latin=1500, cursive=2000)

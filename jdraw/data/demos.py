@@ -132,7 +132,7 @@ def sample(
     (``ks.keep_turns``: True for cursive words and scribbles).
     """
     if keep_turns is None:
-        keep_turns = bool(getattr(ks, "keep_turns", False))
+        keep_turns = bool(ks.keep_turns)
     strokes = ks.strokes(i)
     affine = None
     if rng is not None and strength > 0:

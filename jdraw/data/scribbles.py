@@ -16,9 +16,9 @@ Each curve is one of:
 * ``spline``: a smooth curve through 4-7 random points, which may cross itself;
 * ``retrace``: a smooth curve that turns back over its last part and leaves it.
 
-Curves are rotated, sheared and placed at random, kept :data:`MARGIN` pixels
-inside the canvas, and their loops kept at least :data:`MIN_LOOP` pixels
-across so that a loop's sides stay apart on the canvas.
+Curves are rotated, sheared and placed at random and kept :data:`MARGIN`
+pixels inside the canvas. Nothing bounds a loop's size from below: a small
+loop may close up on the canvas, as a small cursive e does.
 """
 
 from __future__ import annotations
@@ -30,7 +30,6 @@ from jdraw.data.kanji import CANVAS, KanjiSet
 
 KINDS = ("loops", "cusps", "spline", "retrace")
 MARGIN = 4.0  # canvas pixels kept free around a drawing
-MIN_LOOP = 9.0  # canvas pixels: the smallest loop's width
 
 
 def _trochoid(rng: np.random.Generator, cusp: bool) -> np.ndarray:
@@ -99,9 +98,9 @@ def curve(kind: str, rng: np.random.Generator) -> np.ndarray:
 def drawing(rng: np.random.Generator) -> list[np.ndarray]:
     """One to three curves placed together on the canvas: ``[n, 2]`` polylines, canvas pixels.
 
-    The drawing is scaled to fit inside :data:`MARGIN`, never so small that
-    its smallest loop is under :data:`MIN_LOOP` pixels wide (it is then
-    cropped of whole curves until it fits).
+    The drawing is scaled to fit inside :data:`MARGIN`, by 0.75-1 of the
+    largest such scale; where that would shrink several curves below 0.6,
+    the last curves are dropped until it does not (or one is left).
     """
     n = int(rng.choice([1, 2, 3], p=[0.5, 0.35, 0.15]))
     curves = [curve(KINDS[int(rng.integers(len(KINDS)))], rng) for _ in range(n)]

@@ -167,7 +167,7 @@ def sample(ks: kanji.KanjiSet, i: int, rng: np.random.Generator, strength: float
     p = np.asarray([styles[k] for k in names], float)
     style = names[int(rng.choice(len(names), p=p / p.sum()))]
     ctrl = ks.strokes(i)
-    turns = bool(getattr(ks, "keep_turns", False))
+    turns = bool(ks.keep_turns)
     if strength > 0:
         a, t = kanji.random_affine(rng, np.concatenate(ctrl), strength)
         ctrl = [c @ a.T + t for c in ctrl]

@@ -103,7 +103,7 @@ def child(stats_path: str, argv: list[str]) -> int:
             programs.append([kw.get("fun_name", "?"), secs, hits[0] > 0])
             hits[0] = 0
         elif event == "/jdraw/program_store/load_duration":  # jdraw.planner.executables
-            programs.append(["stream", secs, True])
+            programs.append(["stored program", secs, True])
 
     def on_event(event, **kw):
         if event == "/jax/compilation_cache/cache_hits":
@@ -222,5 +222,7 @@ if __name__ == "__main__":
         stats, rest = sys.argv[2], sys.argv[3:]
         if rest and rest[0] == "--":
             rest = rest[1:]
-        sys.exit(child(stats, rest))
+        from jdraw import cli
+
+        cli.quick_exit(child(stats, rest))  # leaves as the jdraw command does
     main()

@@ -3,16 +3,22 @@
 Command:
   python train.py --config configs/reading_direction.py --workdir runs/reading_direction
 
-Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN and DETECTOR_EVAL:
-  apt-get install culmus fonts-kacst fonts-arabeyes fonts-sil-scheherazade \
-    fonts-dejavu-core fonts-liberation fonts-kaushanscript fonts-noto-core fonts-noto-cjk \
+Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EVAL:
+  apt-get install culmus culmus-fancy fonts-kacst fonts-kacst-one fonts-arabeyes \
+    fonts-farsiweb fonts-hosny-thabit fonts-sil-lateef fonts-sil-harmattan \
+    fonts-ukij-uyghur fonts-sil-scheherazade fonts-dejavu-core fonts-liberation \
+    fonts-kaushanscript fonts-urw-base35 fonts-sil-andika fonts-sil-charis \
+    fonts-sil-gentium fonts-comfortaa fonts-noto-core fonts-noto-cjk \
     fonts-freefont-ttf fonts-sil-ezra fonts-hosny-amiri fonts-dancingscript
 
 Random letters of 15 scripts set in the training fonts (words_per_script
-drawings each) and random sketches are cut into line windows; a three-layer
-CNN (about 4,700 weights) is fitted on them and written to ``out``, the
-package's jdraw/assets/reading, with its provenance and its accuracy on
-drawings set in the held-out fonts.
+drawings per left-to-right script, rtl_words_per_script per right-to-left
+one) and random sketches are cut into line windows, each line also stretched
+along x; a three-layer CNN is fitted on them. Its threshold is set on
+drawings in the validation fonts (at most max_false_rtl of left-to-right ones
+read right to left), and it is written to ``out``, the package's
+jdraw/assets/reading, with its provenance and its accuracy on drawings set
+in the held-out fonts.
 
 Wall time and result: see jdraw/assets/reading/direction.json ("seconds",
 "held_out_accuracy") and docs/reading_direction.md.
@@ -27,17 +33,22 @@ def get_config() -> ml_collections.ConfigDict:
     c.stage = "reading"
     c.seed = 0
     c.out = "jdraw/assets/reading"
-    c.words_per_script = 150  # drawings per script
-    c.sketches = 200
+    c.words_per_script = 300  # drawings per left-to-right script
+    c.rtl_words_per_script = 1500  # drawings per right-to-left script
+    c.sketches = 600
     c.min_height = 30  # px, ink height of a drawing
     c.max_height = 160
     c.two_words = 0.3  # fraction of drawings with two words
     c.marker = 0.4  # fraction drawn with a thick outline (a marker)
     c.slant = 0.4  # fraction sheared like slanted handwriting
-    c.channels = (8, 16, 24)
-    c.steps = 3000
+    c.stretch = 1.4  # lines also cut stretched along x by a factor in [1/stretch, stretch]
+    c.width = 64  # px, window width (windows are reading.WINDOW = 32 px high)
+    c.channels = (16, 32, 48, 64)
+    c.steps = 4000
     c.batch = 256
     c.learning_rate = 3e-3
+    c.val_words_per_font = 20  # drawings per validation font, for the threshold
+    c.max_false_rtl = 0.01  # left-to-right validation drawings allowed to read rtl
     c.eval_words_per_font = 12
     return c
 
@@ -46,8 +57,10 @@ def tiny() -> ml_collections.ConfigDict:
     """A few drawings and steps: what the tests run."""
     c = get_config()
     c.words_per_script = 2
+    c.rtl_words_per_script = 2
     c.sketches = 2
     c.steps = 3
     c.batch = 16
+    c.val_words_per_font = 1
     c.eval_words_per_font = 1
     return c

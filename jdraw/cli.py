@@ -263,5 +263,30 @@ def main(argv: list[str] | None = None) -> int:
         return 3
 
 
+def quick_exit(status: int) -> None:
+    """Ends the process with ``status`` at once, once its streams and atexit handlers are done.
+
+    Python's own shutdown then tears JAX's runtime down object by object:
+    about 0.2 s on a 2-core CPU, a sixth of a warm ``jdraw draw`` (issue 25).
+    Every output file is closed by the time a command returns, so nothing is lost.
+    """
+    import atexit
+    import logging
+
+    atexit._run_exitfuncs()  # what interpreter shutdown would run first (tqdm, logging, ...)
+    logging.shutdown()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a closed pipe: nothing more can be said
+            pass
+    os._exit(status)
+
+
+def run() -> None:
+    """The ``jdraw`` command: :func:`main`, then :func:`quick_exit` with its status."""
+    quick_exit(main())
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    run()

@@ -192,3 +192,22 @@ def test_no_split_reaches_the_planner(word_photo, tmp_path, monkeypatch, capsys)
     assert seen and set(seen) == {"unset"}  # the checkpoint's own setting
     with pytest.raises(ValueError, match="split"):
         tiling.plan_image(np.zeros((50, 50), np.uint8), planner=trace_planner, split=False)
+
+
+def test_quick_exit_flushes_runs_atexit_and_keeps_the_status(tmp_path):
+    # The jdraw command leaves with os._exit (cli.run): buffered output and atexit
+    # handlers must not be lost, and the status must come through.
+    flag = tmp_path / "atexit_ran"
+    code = (
+        "import atexit, sys\n"
+        "from jdraw import cli\n"
+        f"atexit.register(lambda: open({str(flag)!r}, 'w').write('yes'))\n"
+        "sys.stdout.write('x' * 100000)\n"
+        "sys.stderr.write('err')\n"
+        "cli.quick_exit(3)\n"
+        "print('not reached')\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 3
+    assert out.stdout == "x" * 100000 and out.stderr == "err"
+    assert flag.read_text() == "yes"

@@ -15,11 +15,14 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 _PLAN = """
 import json, warnings
 from jax import monitoring
-hits, stored = [], []
+hits, stored, compiled = [], [], []
 monitoring.register_event_listener(
     lambda e, **k: hits.append(e) if e == "/jax/compilation_cache/cache_hits" else None)
 monitoring.register_event_duration_secs_listener(
     lambda e, s, **k: stored.append(e) if e == "/jdraw/program_store/load_duration" else None)
+monitoring.register_event_duration_secs_listener(
+    lambda e, s, **k: compiled.append(e) if e == "/jax/core/compile/backend_compile_duration"
+    else None)
 import jdraw
 from jdraw import compile_cache
 with warnings.catch_warnings(record=True) as w:
@@ -27,6 +30,7 @@ with warnings.catch_warnings(record=True) as w:
     r = jdraw.plan_image("examples/images/kanji.png", progress=False)
     folder = compile_cache.enable()
 print(json.dumps({"dir": folder and str(folder), "hits": len(hits), "stored": len(stored),
+                  "compiled": len(compiled),
                   "warnings": [str(x.message) for x in w],
                   "strokes": [s.tolist() for s in r.strokes]}))
 """
@@ -74,10 +78,17 @@ def test_plans_identical_with_and_without_the_cache(tmp_path):
     cold = _run(_PLAN, cache)
     folder = pathlib.Path(cold["dir"])
     assert folder.parent == cache and folder.name != "xla-jax0.0.1-jaxlib0.0.1"
-    assert cold["hits"] == 0 and cold["stored"] == 0 and any(folder.iterdir())
-    assert len(list((folder / "jdraw-programs").iterdir())) == 1  # the slot planner, whole
+    assert cold["hits"] == 0 and cold["stored"] == 0 and cold["compiled"] > 0
+    # The slot planner, whole, and the five small nets: direction, splits, joins, ranker x2.
+    stored = sorted(p.name.rsplit("-", 1)[0] for p in (folder / "jdraw-programs").iterdir())
+    assert stored == [
+        "net-_headings", "net-_join_logits", "net-_logits", "net-_pair_net", "net-_split_logits",
+        "stream",
+    ]  # fmt: skip
+    # The model, the ranker, the splitter and the reading-direction net, shapes only.
+    assert len(list((cache / "modules").glob("*.pkl"))) == 4
     warm = _run(_PLAN, cache)
-    assert warm["hits"] > 0 and warm["stored"] == 1 and warm["dir"] == cold["dir"]
+    assert warm["stored"] == 6 and warm["compiled"] == 0 and warm["dir"] == cold["dir"]
     off = _run(_PLAN, "off")
     assert off["dir"] is None and off["hits"] == 0 and off["stored"] == 0
     assert cold["strokes"] == warm["strokes"] == off["strokes"]
@@ -101,3 +112,29 @@ print(json.dumps({"dir": first or second, "y": y, "warnings": [str(x.message) fo
     out = _run(code, blocker / "cache")
     assert out["dir"] is None and out["y"] == 41
     assert len(out["warnings"]) == 1 and "JDRAW_CACHE_DIR" in out["warnings"][0]
+
+
+def test_module_shapes_are_kept_and_checked(monkeypatch, tmp_path):
+    """bundle.shapes: traced once, then read back; a bad file or another key traces again."""
+    from flax import nnx
+
+    from jdraw.model import bundle
+
+    monkeypatch.setenv(compile_cache.ENV, str(tmp_path))
+    calls = []
+
+    def build(width=3):
+        calls.append(width)
+        return nnx.Linear(2, width, rngs=nnx.Rngs(0))
+
+    first = bundle.shapes(build, ["test", 3])
+    again = bundle.shapes(build, ["test", 3])
+    assert calls == [3] and again.kernel.shape == first.kernel.shape == (2, 3)
+    (kept,) = (tmp_path / "modules").glob("*.pkl")
+    kept.write_bytes(b"not a pickle")
+    assert bundle.shapes(build, ["test", 3]).kernel.shape == (2, 3) and calls == [3, 3]
+    assert bundle.shapes(lambda: build(4), ["test", 4]).kernel.shape == (2, 4)
+    assert len(list((tmp_path / "modules").glob("*.pkl"))) == 2
+    monkeypatch.setenv(compile_cache.ENV, "off")
+    bundle.shapes(build, ["test", 3])
+    assert calls == [3, 3, 4, 3]

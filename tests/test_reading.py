@@ -145,3 +145,47 @@ def test_fit_learns_and_round_trips(tmp_path):
     again = reading.load(tmp_path)
     np.testing.assert_allclose(reading.window_logits(again, x[:8] / 255.0), logits[:8], atol=1e-5)
     assert isinstance(again, nnx.Module)
+
+
+def test_font_splits_never_overlap():
+    from jdraw.data import fonts as F
+
+    for script in F.DETECTOR_TRAIN:
+        train = set(F.DETECTOR_TRAIN[script])
+        val, held = set(F.DETECTOR_VAL.get(script, ())), set(F.DETECTOR_EVAL.get(script, ()))
+        assert not (train & val) and not (train & held) and not (val & held), script
+    assert set(F.DETECTOR_VAL) <= set(F.DETECTOR_TRAIN)
+
+
+def test_threshold_lets_through_at_most_the_allowed_false_rtl():
+    from jdraw.train import reading as training
+
+    ltr = list(np.linspace(-3.0, 2.0, 100))  # 100 left-to-right drawings' scores
+    val = {"latin": ltr[:60], "han": ltr[60:] + [-np.inf], "hebrew": [5.0, 0.5]}
+    t = training.choose_threshold(val, 0.02)
+    assert sum(v > t for v in ltr) <= 2 and sum(v >= t for v in ltr) == 3
+    assert training.choose_threshold({"latin": [-4.0, -3.0]}, 0.0) == 0.0  # never below 0
+    assert training.choose_threshold({"hebrew": [1.0]}, 0.1) == reading.THRESHOLD
+
+
+def test_stretched_lines_keep_their_height_and_ink():
+    from jdraw.train import reading as training
+
+    (line,) = reading.line_images(prepare(load_image(RTL_WORDS[0])))
+    for f in (0.7, 1.4):
+        out = training.stretch(line, f)
+        assert out.shape == (line.shape[0], round(line.shape[1] * f))
+        assert abs(out.sum() / line.sum() - f) < 0.05
+    x, ink = reading.windows(training.stretch(line[:, :20], 0.5), 48)  # short: padded
+    assert x.shape == (1, reading.WINDOW, 48) and ink[0] > 0
+
+
+def test_threshold_and_width_are_stored_with_the_net(tmp_path):
+    net = reading.DirectionNet((4, 4, 4, 4), threshold=-50.0, width=64, rngs=nnx.Rngs(0))
+    reading.save(net, tmp_path)
+    again = reading.load(tmp_path)
+    assert again.threshold == -50.0 and again.width == 64 and len(again.convs) == 4
+    prep = prepare(load_image(EXAMPLES[0]))
+    assert reading.detect(prep, again) == "rtl"  # any score beats -50
+    again.threshold = 50.0
+    assert reading.detect(prep, again) == "ltr"

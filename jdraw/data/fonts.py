@@ -32,8 +32,15 @@ class FontMissing(FileNotFoundError):
     """A font file is not installed; the message names its Debian package."""
 
 
-# name -> font. Culmus, KACST, Arabeyes and Scheherazade fonts train the detector;
-# Noto, FreeFont, Amiri, SIL Ezra and Dancing Script measure it and write the examples.
+# Faces of fonts-ukij-uyghur (UKIJ<face>.ttf).
+_UKIJ = (
+    "Tuz", "Basma", "Ekran", "Qolyazma", "Ku", "Sls", "Nsq", "Junu", "Di", "Me", "Tor", "Ru",
+    "Zilwa", "Saet", "Es", "Kesme", "Chechek",
+)  # fmt: skip
+
+# name -> font. Culmus, KACST, Arabeyes, FarsiWeb, UKIJ, SIL, URW and a few more train the
+# detector (a few of them only set its threshold); Noto, FreeFont, Amiri, SIL Ezra and
+# Dancing Script measure it and write the examples.
 FONTS = {
     # Hebrew
     "david": Font("DavidCLM-Medium.otf", "culmus"),
@@ -45,6 +52,22 @@ FONTS = {
     "simple": Font("SimpleCLM-Medium.ttf", "culmus"),
     "shofar": Font("ShofarRegular.ttf", "culmus"),
     "stam": Font("StamAshkenazCLM.ttf", "culmus"),
+    "miriam_mono": Font("MiriamMonoCLM-Book.ttf", "culmus"),
+    "stam_sefarad": Font("StamSefaradCLM.ttf", "culmus"),
+    "anka": Font("AnkaCLM-Bold.otf", "culmus-fancy"),
+    "gladia": Font("GladiaCLM-Bold.otf", "culmus-fancy"),
+    "hillel": Font("HillelCLM-Medium.otf", "culmus-fancy"),
+    "horev": Font("HorevCLM-Heavy.otf", "culmus-fancy"),
+    "journal": Font("JournalCLM-Light.otf", "culmus-fancy"),
+    "ozrad": Font("OzradCLM-Bold.otf", "culmus-fancy"),
+    "trashim": Font("TrashimCLM-Bold.otf", "culmus-fancy"),
+    "dorian": Font("DorianCLM-Book.ttf", "culmus-fancy"),
+    "makabi": Font("MakabiYG.ttf", "culmus-fancy"),
+    "shmulik": Font("ShmulikCLM.ttf", "culmus-fancy"),
+    "taamey_ashkenaz": Font("TaameyAshkenaz-Medium.ttf", "culmus-fancy"),
+    "taamey_david": Font("TaameyDavidCLM-Medium.ttf", "culmus-fancy"),
+    "taamey_frank": Font("TaameyFrankCLM-Medium.ttf", "culmus-fancy"),
+    "keter_aram_tsova": Font("KeterAramTsova.ttf", "culmus-fancy"),
     "noto_rashi_hebrew": Font("NotoRashiHebrew-Regular.ttf", "fonts-noto-core"),
     "noto_sans_hebrew": Font("NotoSansHebrew-Regular.ttf", "fonts-noto-core"),
     "noto_serif_hebrew": Font("NotoSerifHebrew-Regular.ttf", "fonts-noto-core"),
@@ -66,6 +89,17 @@ FONTS = {
     "ae_nada": Font("ae_Nada.ttf", "fonts-arabeyes"),
     "ae_salem": Font("ae_Salem.ttf", "fonts-arabeyes"),
     "ae_tholoth": Font("ae_Tholoth.ttf", "fonts-arabeyes"),
+    "kacst_one": Font("KacstOne.ttf", "fonts-kacst-one"),
+    "kacst_qurn": Font("KacstQurn.ttf", "fonts-kacst"),
+    "kacst_screen": Font("KacstScreen.ttf", "fonts-kacst"),
+    "kacst_title_l": Font("KacstTitleL.ttf", "fonts-kacst"),
+    "homa": Font("homa.ttf", "fonts-farsiweb"),
+    "nazli": Font("nazli.ttf", "fonts-farsiweb"),
+    "titr": Font("titr.ttf", "fonts-farsiweb"),
+    "thabit": Font("Thabit.ttf", "fonts-hosny-thabit"),
+    "lateef": Font("Lateef-Regular.ttf", "fonts-sil-lateef"),
+    "harmattan": Font("Harmattan-Regular.ttf", "fonts-sil-harmattan"),
+    **{f"ukij_{k.lower()}": Font(f"UKIJ{k}.ttf", "fonts-ukij-uyghur") for k in _UKIJ},
     "scheherazade": Font("Scheherazade-Regular.ttf", "fonts-sil-scheherazade"),
     "noto_naskh_arabic": Font("NotoNaskhArabic-Regular.ttf", "fonts-noto-core"),
     "noto_sans_arabic": Font("NotoSansArabic-Regular.ttf", "fonts-noto-core"),
@@ -78,6 +112,17 @@ FONTS = {
     "liberation_sans": Font("LiberationSans-Regular.ttf", "fonts-liberation"),
     "liberation_serif": Font("LiberationSerif-Regular.ttf", "fonts-liberation"),
     "kaushan": Font("KaushanScript-Regular.otf", "fonts-kaushanscript"),
+    "nimbus_sans": Font("NimbusSans-Regular.otf", "fonts-urw-base35"),
+    "nimbus_roman": Font("NimbusRoman-Regular.otf", "fonts-urw-base35"),
+    "c059": Font("C059-Roman.otf", "fonts-urw-base35"),
+    "p052": Font("P052-Roman.otf", "fonts-urw-base35"),
+    "urw_gothic": Font("URWGothic-Book.otf", "fonts-urw-base35"),
+    "urw_bookman": Font("URWBookman-Light.otf", "fonts-urw-base35"),
+    "z003": Font("Z003-MediumItalic.otf", "fonts-urw-base35"),
+    "andika": Font("Andika-Regular.ttf", "fonts-sil-andika"),
+    "charis": Font("CharisSIL-Regular.ttf", "fonts-sil-charis"),
+    "gentium": Font("Gentium-R.ttf", "fonts-sil-gentium"),
+    "comfortaa": Font("Comfortaa-Regular.ttf", "fonts-comfortaa"),
     "noto_sans": Font("NotoSans-Regular.ttf", "fonts-noto-core"),
     "noto_serif": Font("NotoSerif-Regular.ttf", "fonts-noto-core"),
     "free_sans": Font("FreeSans.ttf", "fonts-freefont-ttf"),
@@ -127,21 +172,31 @@ ALPHABETS = {
     "han": _chars((0x4E00, 0x6FFF)),
 }
 
-# Which fonts train the reading-direction detector and which measure it (disjoint).
+# Which fonts train the reading-direction detector, which set its threshold (DETECTOR_VAL)
+# and which measure it (DETECTOR_EVAL): the three never overlap.
 DETECTOR_TRAIN = {
     "hebrew": [
         "david", "frank_ruehl", "hadasim", "keter", "miriam", "nachlieli", "simple",
-        "shofar", "stam", "noto_rashi_hebrew", "dejavu_sans",
+        "shofar", "stam", "stam_sefarad", "anka", "gladia", "horev", "journal", "ozrad",
+        "trashim", "makabi", "taamey_ashkenaz", "taamey_david", "taamey_frank",
+        "keter_aram_tsova", "noto_rashi_hebrew", "dejavu_sans",
     ],
     "arabic": [
         "kacst_book", "kacst_naskh", "kacst_office", "kacst_farsi", "kacst_letter",
-        "kacst_pen", "kacst_title", "ae_arab", "ae_cortoba", "ae_furat", "ae_granada",
-        "ae_hani", "ae_khalid", "ae_nada", "ae_salem", "ae_tholoth", "scheherazade",
-        "dejavu_sans",
+        "kacst_pen", "kacst_title", "kacst_one", "kacst_qurn", "kacst_title_l", "ae_arab",
+        "ae_cortoba", "ae_furat", "ae_granada", "ae_hani", "ae_khalid", "ae_nada", "ae_salem",
+        "ae_tholoth", "homa", "titr", "thabit", "lateef", "scheherazade", "ukij_tuz",
+        "ukij_basma", "ukij_ekran", "ukij_qolyazma", "ukij_ku", "ukij_sls", "ukij_junu",
+        "ukij_di", "ukij_me", "ukij_tor", "ukij_ru", "ukij_zilwa", "ukij_saet", "ukij_es",
+        "ukij_kesme", "dejavu_sans",
     ],
-    "latin": ["dejavu_sans", "dejavu_serif", "liberation_sans", "liberation_serif", "kaushan"],
-    "greek": ["dejavu_sans", "dejavu_serif", "liberation_serif"],
-    "cyrillic": ["dejavu_sans", "dejavu_serif", "liberation_sans"],
+    "latin": [
+        "dejavu_sans", "dejavu_serif", "liberation_sans", "liberation_serif", "kaushan",
+        "nimbus_sans", "nimbus_roman", "c059", "p052", "urw_bookman", "z003", "charis",
+        "gentium", "comfortaa",
+    ],
+    "greek": ["dejavu_sans", "dejavu_serif", "liberation_serif", "gentium", "c059"],
+    "cyrillic": ["dejavu_sans", "dejavu_serif", "liberation_sans", "charis", "p052"],
     "armenian": ["dejavu_sans", "noto_sans_armenian"],
     "georgian": ["dejavu_sans", "noto_sans_georgian"],
     "devanagari": ["noto_sans_devanagari"],
@@ -152,6 +207,13 @@ DETECTOR_TRAIN = {
     "hangul": ["noto_sans_cjk_kr"],
     "kana": ["noto_sans_cjk_jp"],
     "han": ["noto_sans_cjk_sc", "noto_sans_cjk_jp"],
+}  # fmt: skip
+DETECTOR_VAL = {
+    "hebrew": ["hillel", "dorian", "shmulik", "miriam_mono"],
+    "arabic": ["harmattan", "nazli", "ukij_nsq", "ukij_chechek", "kacst_screen"],
+    "latin": ["urw_gothic", "andika"],
+    "cyrillic": ["andika"],
+    "greek": ["urw_gothic"],
 }  # fmt: skip
 DETECTOR_EVAL = {
     "hebrew": ["noto_sans_hebrew", "noto_serif_hebrew", "free_sans", "free_serif", "ezra"],

@@ -282,10 +282,9 @@ def thick_centrelines(
         degrees (0: every chain drawn alone).
       sigma: smoothing along chains, pixels.
     """
-    from skimage.morphology import skeletonize
-
     from jdraw.images import ink as ink_rules
     from jdraw.images import skeleton
+    from jdraw.images.morph import skeletonize
 
     sk = skeletonize(ink)
     width = ink_rules.stroke_width(ink, sk)

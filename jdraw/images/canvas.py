@@ -12,9 +12,9 @@ import dataclasses
 from collections.abc import Sequence
 
 import numpy as np
-from skimage import morphology
 
 from jdraw import geometry
+from jdraw.images import morph
 from jdraw.images.prepare import Prepared, prepare
 from jdraw.images.skeleton import simplify
 
@@ -61,7 +61,7 @@ def render_polylines(
     tol = 0.35 / transform.scale
     canvas_lines = [transform.to_canvas(simplify(p, tol)) for p in polylines]
     img = geometry.render_strokes(canvas_lines, shape)
-    return morphology.skeletonize(img) if img.any() else img
+    return morph.skeletonize(img) if img.any() else img
 
 
 def fit_transform(

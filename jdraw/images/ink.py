@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from skimage import filters, morphology
 
+from jdraw.images import morph
 from jdraw.images.load import BlankImageError
 
 
@@ -148,13 +148,13 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
         np.negative(contrast, out=contrast)
     shape = g.shape
     del g
-    ink0 = contrast > filters.threshold_otsu(contrast)
+    ink0 = contrast > morph.otsu(contrast)
     ground = (~cv2.dilate(ink0.astype(np.uint8), np.ones((5, 5), np.uint8)).astype(bool)).astype(
         np.float32
     )
     if ground.mean() > 0.05:
         contrast -= _masked_blur(contrast, ground, max(shape) / 10.0)
-        ink0 = contrast > filters.threshold_otsu(contrast)
+        ink0 = contrast > morph.otsu(contrast)
     del ground
     background_px = contrast[~ink0]
     if not ink0.any() or background_px.size == 0:
@@ -186,7 +186,7 @@ def stroke_width(ink: np.ndarray, skeleton: np.ndarray | None = None) -> float:
     if not ink.any():
         return 1.0
     if skeleton is None:
-        skeleton = morphology.skeletonize(ink)
+        skeleton = morph.skeletonize(ink)
     dist = ink_distance(ink)
     return max(1.0, 2.0 * float(np.median(dist[skeleton])) - 1.0)
 
@@ -198,4 +198,4 @@ def denoise(ink: np.ndarray, width: float) -> np.ndarray:
     big = stats[:, cv2.CC_STAT_AREA] >= area
     big[0] = False
     ink = big[labels]
-    return morphology.remove_small_holes(ink, max_size=area)
+    return morph.fill_small_holes(ink, area)

@@ -12,8 +12,8 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
-from skimage import morphology
 
+from jdraw.images import morph
 from jdraw.images.ink import binarize, denoise, ink_distance, stroke_width
 from jdraw.images.load import BlankImageError, to_gray
 from jdraw.images.skeleton import extend_ends, prune_spurs, simplify, skeleton_polylines
@@ -58,7 +58,7 @@ def prepare(image: np.ndarray, *, polarity: str = "auto") -> Prepared:
     ink = denoise(ink, width)
     if not ink.any():
         raise BlankImageError("no ink found (only specks of noise)")
-    skel = morphology.skeletonize(ink)
+    skel = morph.skeletonize(ink)
     width = stroke_width(ink, skel)
     polylines = skeleton_polylines(skel)
     if width > 2:

@@ -9,17 +9,18 @@ Devanagari, Tamil, Hangul, CJK and sketches are planned left to right.
    drawn again as 1-pixel lines scaled to ``LINE`` px high
    (:func:`line_images`), so a font's weight, a marker's width and the text's
    size do not matter;
-2. a small CNN (:class:`DirectionNet`) scores every ``WINDOW x WINDOW`` window
-   along each line (:func:`windows`);
+2. a small CNN (:class:`DirectionNet`) scores every window ``WINDOW`` px high
+   and the net's ``width`` wide along each line (:func:`windows`);
 3. the window logits, weighted by their ink, are averaged; a mean above
    ``THRESHOLD`` is right to left.
 
-The threshold is a prior for left to right: reading a kanji or a sketch right
-to left would reorder what the planner was built for, so the windows must
-agree clearly (``THRESHOLD = 1.5``, a mean window probability of about 0.8).
-It was set so that the four drawings of ``examples/images`` (a kanji, a
-cursive word, a sentence, a sketch), which scored up to 1.18, stay left to
-right; the right-to-left benchmark (``bench/rtl_words.py``) was not consulted.
+The threshold is part of the trained detector (``direction.json``): the
+trainer sets it on drawings in fonts it neither fits nor measures on
+(:data:`jdraw.data.fonts.DETECTOR_VAL`), as the lowest mean logit at which
+at most ``cfg.max_false_rtl`` of their left-to-right drawings would read right
+to left, and never below 0. Reading a kanji or a sketch right to left would
+reorder what the planner was built for, so left to right is the prior.
+A detector saved without one uses ``THRESHOLD``.
 
 The net is trained on random letters set in fonts of Debian packages
 (:mod:`jdraw.train.reading`, ``configs/reading_direction.py``); its weights,
@@ -39,22 +40,27 @@ from flax import nnx
 
 from jdraw.images.prepare import Prepared
 
-WINDOW = 32  # px, side of a window the net sees
+WINDOW = 32  # px, height of a window the net sees (and its width, unless the net says)
 LINE = 28  # px, height a text line is scaled to (2 px blank above and below)
 STRIDE = 16  # px between windows along a line
-THRESHOLD = 1.5  # mean window logit above which a drawing reads right to left
+THRESHOLD = 1.5  # mean window logit above which a drawing reads right to left, if not stored
 ASSET = pathlib.Path(__file__).resolve().parent.parent / "assets" / "reading"
 DIRECTIONS = ("ltr", "rtl")
 
 
 class DirectionNet(nnx.Module):
-    """Three 3x3 conv layers with 2x2 max pooling, a global mean and one logit.
+    """3x3 conv layers (one per entry of ``channels``) with 2x2 max pooling, a mean, one logit.
 
-    ``x [B, WINDOW, WINDOW]`` float in [0, 1] (ink 1) -> ``[B]`` logits of right to left.
+    ``x [B, WINDOW, width]`` float in [0, 1] (ink 1) -> ``[B]`` logits of right to left.
     """
 
-    def __init__(self, channels: tuple[int, ...] = (8, 16, 24), *, rngs: nnx.Rngs):
+    def __init__(
+        self, channels: tuple[int, ...] = (8, 16, 24), threshold: float = THRESHOLD,
+        width: int = WINDOW, *, rngs: nnx.Rngs,
+    ):  # fmt: skip
         self.channels = tuple(channels)
+        self.threshold = float(threshold)  # mean window logit above which a drawing is rtl
+        self.width = int(width)  # px, width of the windows it reads
         din = (1, *channels[:-1])
         self.convs = nnx.List(
             [nnx.Conv(a, b, (3, 3), padding="SAME", rngs=rngs) for a, b in zip(din, channels)]
@@ -123,29 +129,31 @@ def line_images(prep: Prepared) -> list[np.ndarray]:
     return out
 
 
-def windows(line: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``WINDOW``-wide windows along a line image, every ``STRIDE`` px.
+def windows(line: np.ndarray, width: int = WINDOW) -> tuple[np.ndarray, np.ndarray]:
+    """``width``-px-wide windows along a line image, every ``STRIDE`` px.
 
     Returns:
-      ``(x [n, WINDOW, WINDOW] float32, ink [n] float32)``: the windows and the
+      ``(x [n, WINDOW, width] float32, ink [n] float32)``: the windows and the
       ink each holds (its weight in the vote); blank windows are left out.
     """
+    if line.shape[1] < width:  # a short line: blank to the right
+        line = np.pad(line, ((0, 0), (0, width - line.shape[1])))
     h, w = line.shape
-    starts = list(range(0, max(w - WINDOW, 0) + 1, STRIDE))
-    if starts[-1] + WINDOW < w:
-        starts.append(w - WINDOW)
-    x = np.stack([line[:WINDOW, s : s + WINDOW] for s in starts])
+    starts = list(range(0, w - width + 1, STRIDE))
+    if starts[-1] + width < w:
+        starts.append(w - width)
+    x = np.stack([line[:WINDOW, s : s + width] for s in starts])
     ink = x.sum((1, 2))
     keep = ink > 0
     return x[keep], ink[keep]
 
 
-def drawing_windows(prep: Prepared) -> tuple[np.ndarray, np.ndarray]:
-    """All windows of a drawing's lines and their ink: ``([n, WINDOW, WINDOW], [n])``."""
-    parts = [windows(line) for line in line_images(prep)]
+def drawing_windows(prep: Prepared, width: int = WINDOW) -> tuple[np.ndarray, np.ndarray]:
+    """All windows of a drawing's lines and their ink: ``([n, WINDOW, width], [n])``."""
+    parts = [windows(line, width) for line in line_images(prep)]
     parts = [p for p in parts if len(p[0])]
     if not parts:
-        return np.zeros((0, WINDOW, WINDOW), np.float32), np.zeros(0, np.float32)
+        return np.zeros((0, WINDOW, width), np.float32), np.zeros(0, np.float32)
     return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
 
 
@@ -155,20 +163,22 @@ def _logits(graphdef, st, x):
 
 
 def window_logits(net: DirectionNet, x: np.ndarray) -> np.ndarray:
-    """``[n]`` logits of ``x [n, WINDOW, WINDOW]``, padded to a power of two (few compiles)."""
+    """``[n]`` logits of ``x [n, WINDOW, net.width]``, padded to a power of two (few compiles)."""
     if len(x) == 0:
         return np.zeros(0, np.float32)
     g, st = nnx.split(net)
     size = 1 << (len(x) - 1).bit_length()
-    pad = np.zeros((size, WINDOW, WINDOW), np.float32)
+    pad = np.zeros((size, *x.shape[1:]), np.float32)
     pad[: len(x)] = x
-    return np.asarray(_logits(g, st, pad))[: len(x)]
+    from jdraw.planner.ranker import net_call
+
+    return np.asarray(net_call(_logits, g, st, pad))[: len(x)]
 
 
 def rtl_score(prep: Prepared, net: DirectionNet | None = None) -> float:
-    """Mean window logit, weighted by ink: above ``THRESHOLD`` reads right to left."""
+    """Mean window logit, weighted by ink: above the net's ``threshold`` reads right to left."""
     net = net or load()
-    x, ink = drawing_windows(prep)
+    x, ink = drawing_windows(prep, net.width)
     if len(x) == 0:
         return -np.inf
     return float(np.sum(window_logits(net, x) * ink) / np.sum(ink))
@@ -179,14 +189,20 @@ def detect(prep: Prepared, net: DirectionNet | None = None) -> str:
     from jdraw import compile_cache
 
     compile_cache.enable()  # plan_image reads the direction before its first jdraw.plan
-    return "rtl" if rtl_score(prep, net) > THRESHOLD else "ltr"
+    net = net or load()
+    return "rtl" if rtl_score(prep, net) > net.threshold else "ltr"
 
 
 def save(net: DirectionNet, out_dir=ASSET, provenance: dict | None = None) -> pathlib.Path:
     """Writes ``direction.npz`` and ``direction.json`` into ``out_dir``."""
     from jdraw.model import bundle
 
-    meta = {"channels": list(net.channels), "provenance": provenance or {}}
+    meta = {
+        "channels": list(net.channels),
+        "threshold": net.threshold,
+        "width": net.width,
+        "provenance": provenance or {},
+    }
     return bundle.save_net(net, out_dir, "direction", meta)
 
 
@@ -199,9 +215,13 @@ def load(folder=None) -> DirectionNet:
 def _load(folder: str) -> DirectionNet:
     from jdraw.model import bundle
 
-    net = bundle.load_net(
-        folder, "direction", lambda m: DirectionNet(tuple(m["channels"]), rngs=nnx.Rngs(0))
-    )
+    def build(meta):
+        return DirectionNet(
+            meta["channels"], meta.get("threshold", THRESHOLD), meta.get("width", WINDOW),
+            rngs=nnx.Rngs(0),
+        )  # fmt: skip
+
+    net = bundle.load_net(folder, "direction", build)
     if net is None:
         raise FileNotFoundError(f"no reading-direction detector (direction.json) in {folder}")
     return net

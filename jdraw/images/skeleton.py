@@ -7,7 +7,8 @@ integers, as in :mod:`jdraw.geometry`.
 from __future__ import annotations
 
 import numpy as np
-from skimage import morphology
+
+from jdraw.images import morph
 
 _OFFSETS = ((-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1))  # (dy, dx)
 
@@ -99,7 +100,7 @@ def prune_spurs(skel: np.ndarray, dist: np.ndarray, width: float, rounds: int = 
                 removed = True
         if not removed:
             break
-    return morphology.skeletonize(skel)
+    return morph.skeletonize(skel)
 
 
 def extend_ends(

@@ -8,6 +8,7 @@ by its path). It needs neither Orbax nor the training config to load.
 from __future__ import annotations
 
 import json
+import os
 import pathlib
 import zipfile
 
@@ -24,6 +25,58 @@ DEFAULT_MODEL = {"hidden": 256, "core": "lstm", "extraction": "late"}
 
 class BundleError(ValueError):
     """A bundle that is missing, corrupt or does not fit this code."""
+
+
+def _source_stamp() -> list:
+    """Size and modification time of every ``.py`` file of the package: changes with the code."""
+    root = pathlib.Path(__file__).resolve().parents[1]
+    return sorted(
+        (str(f.relative_to(root)), st.st_size, st.st_mtime_ns)
+        for f in root.rglob("*.py")
+        for st in [f.stat()]
+    )
+
+
+def shapes(build, key) -> nnx.Module:
+    """``nnx.eval_shape(build)``: the module ``build()`` makes, its arrays as shapes only.
+
+    Tracing a model's constructor takes a few tenths of a second, on every
+    start (issue 25). The abstract module is therefore kept, pickled, in
+    jdraw's cache folder (:func:`jdraw.compile_cache.cache_root`, the same
+    trust as JAX's cache of executables beside it), under a name made of
+    ``key`` (what ``build`` depends on, JSON), the flax and jax versions and
+    the package's source files. Any failure to read or write it falls back to
+    tracing; ``JDRAW_CACHE_DIR=off`` turns it off.
+    """
+    import hashlib
+    import pickle
+
+    from jdraw import compile_cache
+
+    root = compile_cache.cache_root()
+    if root is None:
+        return nnx.eval_shape(build)
+    import flax
+    import jax
+
+    tag = json.dumps(
+        [key, flax.__version__, jax.__version__, _source_stamp()], sort_keys=True, default=str
+    )
+    path = root / "modules" / f"{hashlib.sha256(tag.encode()).hexdigest()[:32]}.pkl"
+    try:
+        with open(path, "rb") as f:
+            return pickle.load(f)
+    except Exception:  # noqa: BLE001 - missing, partial or from other code: trace it again
+        pass
+    mdl = nnx.eval_shape(build)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_bytes(pickle.dumps(mdl))
+        tmp.replace(path)  # atomic: a reader never sees half a file
+    except Exception:  # noqa: BLE001 - a cache that cannot be written only costs time
+        pass
+    return mdl
 
 
 def state_arrays(model) -> dict[str, np.ndarray]:
@@ -121,7 +174,7 @@ def load(bundle_dir):
     try:
         # Shapes only: the weights come from the file, so no initialiser runs (each
         # would be one more small XLA compilation on a fresh machine).
-        mdl = nnx.eval_shape(lambda: M.build(ConfigDict(meta["model"])))
+        mdl = shapes(lambda: M.build(ConfigDict(meta["model"])), ["model", meta["model"]])
     except (ValueError, TypeError, KeyError) as e:
         raise BundleError(f"{bundle_dir / 'bundle.json'}: bad model config ({e})") from e
     path = bundle_dir / "params.npz"
@@ -201,7 +254,8 @@ def load_net(bundle_dir, stem: str, build):
     if not (d / f"{stem}.json").exists():
         return None
     meta = json.loads((d / f"{stem}.json").read_text())
-    model = nnx.eval_shape(lambda: build(meta))  # shapes only: the arrays come from the npz
+    # Shapes only: the arrays come from the npz.
+    model = shapes(lambda: build(meta), ["net", stem, build.__module__, build.__qualname__, meta])
     try:
         with np.load(d / f"{stem}.npz") as z:
             arrays = {k: z[k] for k in z.files}

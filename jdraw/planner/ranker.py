@@ -19,6 +19,7 @@ plan inks exactly the same pixels.
 
 from __future__ import annotations
 
+import functools
 import pathlib
 
 import jax
@@ -86,11 +87,29 @@ def _pair_net(graphdef, st, x):
 CHUNK = 256  # rows per network call: one shape, compiled once, whatever the strokes
 
 
+def net_call(fn, g, st, *xs):
+    """``fn(g, st, *xs)``, a small jitted net, by its compiled program.
+
+    The program comes from jdraw's program store (:mod:`jdraw.planner.executables`),
+    so a warm start neither traces nor lowers it to find JAX's cache key.
+    """
+    from jdraw.planner import executables
+
+    devices = jax.local_devices()[:1]
+    return executables.run(f"net-{fn.__name__}", _bound(fn, g), (g,), (st, *xs), devices)
+
+
+@functools.lru_cache(maxsize=64)
+def _bound(fn, g):
+    """``fn`` with its graph fixed: the program store keys the graph as a setting, by its repr."""
+    return jax.jit(lambda st, *xs: fn(g, st, *xs))
+
+
 def chunked(fn, g, st, *xs) -> np.ndarray:
     """``fn(g, st, *rows)`` over the rows of ``xs``, ``CHUNK`` rows a call."""
     n = len(xs[0])
     out = [
-        np.asarray(fn(g, st, *(_pad(x[k : k + CHUNK], CHUNK) for x in xs)))
+        np.asarray(net_call(fn, g, st, *(_pad(x[k : k + CHUNK], CHUNK) for x in xs)))
         for k in range(0, n, CHUNK)
     ]
     return np.concatenate(out)[:n] if out else np.zeros(0, np.float32)

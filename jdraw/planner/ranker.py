@@ -91,12 +91,29 @@ def net_call(fn, g, st, *xs):
     """``fn(g, st, *xs)``, a small jitted net, by its compiled program.
 
     The program comes from jdraw's program store (:mod:`jdraw.planner.executables`),
-    so a warm start neither traces nor lowers it to find JAX's cache key.
+    so a warm start neither traces nor lowers it to find JAX's cache key; within a
+    process it is looked up by the net's graph and the rows' shapes alone.
     """
     from jdraw.planner import executables
 
-    devices = jax.local_devices()[:1]
-    return executables.run(f"net-{fn.__name__}", _bound(fn, g), (g,), (st, *xs), devices)
+    k = (fn, g, tuple((x.shape, x.dtype) for x in xs))  # equal graphs, one program
+    exe = _PROGRAMS.get(k)
+    if exe is None:
+        args, devices = (st, *xs), jax.local_devices()[:1]
+        exe = executables.compiled(f"net-{fn.__name__}", _bound(fn, g), (g,), args, devices)
+        _PROGRAMS[k] = exe
+    try:
+        return exe(st, *xs)
+    except jax.errors.JaxRuntimeError:  # a stored program that does not run here
+        bound = _bound(fn, g)
+        if exe is bound:
+            raise
+        executables.forget(f"net-{fn.__name__}", (g,), (st, *xs), jax.local_devices()[:1])
+        _PROGRAMS[k] = bound
+        return bound(st, *xs)
+
+
+_PROGRAMS: dict = {}  # (net function, its graph, row shapes) -> its compiled program
 
 
 @functools.lru_cache(maxsize=64)

@@ -12,7 +12,7 @@ wall seconds are from process start to exit, measured by this parent. Rows:
 * ``word``: a 401x160 cursive-looking word (joined loops, 3-px pen; :func:`word_image`),
   cold and warm;
 * ``one``/``set20``: one generated word, then 20 of them in one command (``--out-dir``), warm
-  (if the word rows did not run, an unmeasured run compiles the word's program first);
+  (an unmeasured run of the 20 first compiles every program they need);
 * ``big10k``: a 10000x10000 PNG of one line, planned (peak RSS is the row's point);
 * ``big20k``: a 20000x20000 PNG of one line, refused by the pixel limit;
 * ``import``: ``python -c "import jdraw"``.
@@ -199,9 +199,11 @@ def main() -> None:
             argv = ["draw", str(word), "--svg", str(out / "w.svg"), "--no-progress"]
         elif argv[0] != "draw":
             argv = ["draw", *argv, "--out-dir", str(out / name), "--svg", "--no-progress"]
-        if name in ("one", "set20") and not warmed:  # the word program, compiled unmeasured
-            run_row(["draw", str(word), "--no-progress"], env, ROOT)
-        warmed = warmed or name.startswith("word") or name == "one"
+        if name in ("one", "set20") and not warmed:  # the set's programs, compiled unmeasured
+            run_row(
+                ["draw", str(images), "--out-dir", str(out / "warm"), "--no-progress"], env, ROOT
+            )
+            warmed = True
         r = run_row(argv, env, ROOT)
         print(
             f"{label:<44} {r['wall']:7.1f} {r['rc']:4d} {r['programs']:8d} {r['compiled']:8d} "

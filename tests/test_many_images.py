@@ -159,3 +159,54 @@ def test_pixel_limit_from_the_header(tmp_path, capsys, monkeypatch):
     # Arrays are held to the limit too.
     with pytest.raises(load.TooLargeError, match="max_pixels="):
         tiling.plan_image(np.zeros((300, 200), np.uint8), planner=trace_planner, max_pixels=50_000)
+
+
+def test_pipeline_runs_calls_side_by_side_and_keeps_each_tile_in_place():
+    """Two planner calls in flight at once (a slow planner), the same tiles' strokes as in turn."""
+    import threading
+    import time
+
+    from jdraw.tiling import tiles
+
+    busy, most, lock = [0], [0], threading.Lock()
+
+    def slow(batch, **kw):
+        with lock:
+            busy[0] += 1
+            most[0] = max(most[0], busy[0])
+        time.sleep(0.05 * (1 + int(batch.sum()) % 3))  # calls finish out of order
+        try:
+            return trace_planner(batch, **kw)
+        finally:
+            with lock:
+                busy[0] -= 1
+
+    def jobs():
+        return [
+            tiles._lay_out(_word(w, seed=i), "auto", 4.0, None)
+            for i, w in enumerate(["minimum", "hello"])
+        ]
+
+    cfg = tiles._settings(slow, None, None, None, "auto", 4.0, 2, 0.5, None, None)
+    serial, threaded = jobs(), jobs()
+    for job in serial:
+        for i in range(len(job.tiles)):
+            tiles._plan_tiles([(job, i)], cfg)
+    with tiles.Pipeline(cfg, workers=2) as pipe:
+        for job in threaded:
+            for i in range(len(job.tiles)):
+                pipe.submit([(job, i)])
+    assert most[0] == 2 and all(job.done for job in threaded)
+    assert len(threaded[0].tiles) > 2  # a tiled word: its tiles in several calls
+    for a, b in zip(serial, threaded):
+        assert len(a.planned) == len(b.planned)
+        for pa, pb in zip(a.planned, b.planned):
+            assert len(pa) == len(pb) and all(np.array_equal(p, q) for p, q in zip(pa, pb))
+
+
+def test_a_planner_error_reaches_the_caller():
+    def broken(batch, **kw):
+        raise RuntimeError("planner broke")
+
+    with pytest.raises(RuntimeError, match="planner broke"):
+        list(tiling.plan_images([_word("hi"), _word("ok")], planner=broken, progress=False))

@@ -21,6 +21,7 @@ import pathlib
 import pickle
 import re
 import tempfile
+import threading
 import time
 
 import jax
@@ -118,6 +119,7 @@ def compiled(name: str, fn, static: tuple, args: tuple, devices):
 
 
 _MEMO: dict = {}  # (jitted function, key) -> its compiled program (or the function itself)
+LOADING = threading.RLock()  # planner threads (jdraw.tiling.tiles.Pipeline) load each once
 
 
 def run(name: str, fn, static, args, devices):
@@ -128,7 +130,9 @@ def run(name: str, fn, static, args, devices):
     """
     k = (fn, key(name, static, args, devices))
     if k not in _MEMO:
-        _MEMO[k] = compiled(name, fn, static, args, devices)
+        with LOADING:
+            if k not in _MEMO:
+                _MEMO[k] = compiled(name, fn, static, args, devices)
     exe = _MEMO[k]
     try:
         return exe(*args)

@@ -99,9 +99,12 @@ def net_call(fn, g, st, *xs):
     k = (fn, g, tuple((x.shape, x.dtype) for x in xs))  # equal graphs, one program
     exe = _PROGRAMS.get(k)
     if exe is None:
-        args, devices = (st, *xs), jax.local_devices()[:1]
-        exe = executables.compiled(f"net-{fn.__name__}", _bound(fn, g), (g,), args, devices)
-        _PROGRAMS[k] = exe
+        with executables.LOADING:  # planner threads load each program once
+            exe = _PROGRAMS.get(k)
+            if exe is None:
+                args, devices = (st, *xs), jax.local_devices()[:1]
+                exe = executables.compiled(f"net-{fn.__name__}", _bound(fn, g), (g,), args, devices)
+                _PROGRAMS[k] = exe
     try:
         return exe(st, *xs)
     except jax.errors.JaxRuntimeError:  # a stored program that does not run here

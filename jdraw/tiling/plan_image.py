@@ -29,8 +29,7 @@ from tqdm.auto import tqdm
 
 from jdraw.images.load import MAX_PIXELS
 from jdraw.planner.plan import plan as default_planner
-from jdraw.tiling.layout import Tile
-from jdraw.tiling.tiles import ImagePlan, _finish, _Job, _lay_out, _plan_tiles, _settings
+from jdraw.tiling.tiles import ImagePlan, Pipeline, _finish, _Job, _lay_out, _settings
 
 Planner = Callable[..., object]
 
@@ -87,7 +86,7 @@ def plan_images(
     total = len(items) if isinstance(items, list) else None
     bar = tqdm(total=total, desc="planning", unit="image", disable=True if not progress else None)
     queue: list[_Job | Exception] = []  # in input order; jobs waiting for tiles
-    pending: list[tuple[_Job, Tile]] = []  # laid-out tiles not yet planned
+    pending: list[tuple[_Job, int]] = []  # laid-out tiles (job, index) not yet planned
 
     def ready():
         while queue and (isinstance(queue[0], Exception) or queue[0].done):
@@ -99,25 +98,30 @@ def plan_images(
                 else _finish(head, cfg["simplify_tol"], join_lifts)
             )
 
-    for image in items:
-        try:
-            job = _lay_out(
-                image, cfg["polarity"], cfg["min_gap"], max_pixels, pixel_flag, cfg["direction"]
-            )
-        except ValueError as e:  # ImageError, InputError: this image only
-            queue.append(e)
+    with Pipeline(cfg) as pipe:  # planner calls run beside the layout of the next images
+        for image in items:
+            try:
+                job = _lay_out(
+                    image, cfg["polarity"], cfg["min_gap"], max_pixels, pixel_flag, cfg["direction"]
+                )
+            except ValueError as e:  # ImageError, InputError: this image only
+                queue.append(e)
+                yield from ready()
+                continue
+            queue.append(job)
+            pending.extend((job, i) for i in range(len(job.tiles)))
+            while len(pending) >= cfg["batch_size"]:
+                pipe.submit(pending[: cfg["batch_size"]])
+                del pending[: cfg["batch_size"]]
             yield from ready()
-            continue
-        queue.append(job)
-        pending.extend((job, t) for t in job.tiles)
-        while len(pending) >= cfg["batch_size"]:
-            _plan_tiles(pending[: cfg["batch_size"]], cfg)
-            del pending[: cfg["batch_size"]]
+        if pending:
+            pipe.submit(pending)
+        while queue:
+            if isinstance(queue[0], _Job):
+                pipe.wait_for(queue[0])
+                if not queue[0].done:  # every tile was submitted: cannot happen
+                    raise RuntimeError("a job's tiles were never planned")
             yield from ready()
-        yield from ready()
-    if pending:
-        _plan_tiles(pending, cfg)
-    yield from ready()
     bar.close()
 
 
@@ -216,9 +220,12 @@ def plan_image(
         unit="tile",
         disable=True if not progress or len(batches) < 2 else None,
     )
-    for start in batches:
-        chunk = job.tiles[start : start + cfg["batch_size"]]
-        _plan_tiles([(job, t) for t in chunk], cfg)
-        bar.update(len(chunk))
+    with Pipeline(cfg) as pipe:
+        for start in batches:
+            chunk = range(start, min(start + cfg["batch_size"], len(job.tiles)))
+            pipe.submit([(job, i) for i in chunk])
+            bar.n = len(job.tiles) - job._left
+            bar.refresh()
+    bar.n = len(job.tiles)
     bar.close()
     return _finish(job, cfg["simplify_tol"], join_lifts)

@@ -6,8 +6,10 @@ a :class:`_Job` carries an image between them.
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 import os
+import threading
 from collections.abc import Callable
 
 import numpy as np
@@ -115,13 +117,17 @@ class _Job:
     regions: list
     single: bool
     direction: str = "ltr"
-    planned: list = dataclasses.field(default_factory=list)
+    planned: list = dataclasses.field(default_factory=list)  # per tile; None until planned
     truncated: int = 0
     completed: int = 0
 
+    def __post_init__(self):
+        self.planned = [None] * len(self.tiles)
+        self._left = len(self.tiles)
+
     @property
     def done(self) -> bool:
-        return len(self.planned) == len(self.tiles)
+        return self._left == 0
 
 
 def _settings(
@@ -177,13 +183,18 @@ def _lay_out(
     return _Job(prep, scale, tiles, regions, choose_scale(prep, min_gap)[1], direction)
 
 
-def _plan_tiles(pending: list[tuple[_Job, Tile]], cfg: dict) -> None:
-    """Plans ``pending`` tiles (of one or more images) in one planner call; fills their jobs.
+_FILL = threading.Lock()  # planner calls may run in threads (:class:`Pipeline`)
 
-    Tiles of images read right to left go in a call of their own, whose ranker
-    orders right to left (the default planner only; a custom one is left as is).
+
+def _plan_tiles(pending: list[tuple[_Job, int]], cfg: dict) -> None:
+    """Plans ``pending`` tiles (job, tile index; of one or more images) in one planner call.
+
+    Fills each tile's strokes into its job. Tiles of images read right to left
+    go in a call of their own, whose ranker orders right to left (the default
+    planner only; a custom one is left as is).
     """
     own = cfg["own"]
+    pending = [(job, i, job.tiles[i]) for job, i in pending]
     groups = [[p for p in pending if p[0].direction == d] for d in ("ltr", "rtl")]
     results = {}
     for d, group in zip(("ltr", "rtl"), groups):
@@ -191,7 +202,7 @@ def _plan_tiles(pending: list[tuple[_Job, Tile]], cfg: dict) -> None:
             continue
         strokes, trunc = _run_planner(
             cfg["planner"],
-            [t.image for _, t in group],
+            [t.image for _, _, t in group],
             cfg["checkpoint"],
             cfg["max_steps"],
             cfg["split"],
@@ -199,13 +210,69 @@ def _plan_tiles(pending: list[tuple[_Job, Tile]], cfg: dict) -> None:
             "rtl" if d == "rtl" and own else None,
         )
         for p, s, tr in zip(group, strokes, trunc, strict=True):
-            results[id(p[1])] = (s, tr)
-    for job, t in pending:
+            results[id(p[2])] = (s, tr)
+    for job, i, t in pending:
         s, tr = results[id(t)]
         s, n = _complete(t.image, [np.asarray(p, np.float64).reshape(-1, 2) for p in s])
-        job.completed += n
-        job.truncated += int(tr)
-        job.planned.append(s)
+        with _FILL:
+            job.completed += n
+            job.truncated += int(tr)
+            job.planned[i] = s
+            job._left -= 1
+
+
+class Pipeline:
+    """Planner calls run in worker threads while the caller lays out and stitches images.
+
+    JAX runs a planner call's compiled loop without holding Python's lock, so
+    reading and laying out the next images, and stitching finished ones, go
+    on beside it; with two workers one call's host-side stages (splitter,
+    ranker) also run beside the next call's loop. Calls of a custom planner
+    run one at a time. At most ``workers`` calls are in flight: :meth:`submit`
+    waits for the oldest beyond that, so memory holds only a few batches.
+    The batches and their contents are the caller's, so plans do not depend
+    on the threads.
+    """
+
+    def __init__(self, cfg: dict, workers: int | None = None):
+        from concurrent.futures import ThreadPoolExecutor
+
+        self.cfg = cfg
+        self.workers = workers or (2 if cfg["own"] else 1)
+        self.pool = ThreadPoolExecutor(self.workers, thread_name_prefix="jdraw-plan")
+        self.inflight: collections.deque = collections.deque()
+        self.calls = 0
+
+    def submit(self, batch: list[tuple[_Job, int]]) -> None:
+        if self.calls == 1:  # the first call loads the models and programs; the rest share them
+            self.wait_all()
+        self.calls += 1
+        self.inflight.append(self.pool.submit(_plan_tiles, batch, self.cfg))
+        while len(self.inflight) > self.workers:
+            self.inflight.popleft().result()
+
+    def wait_all(self) -> None:
+        while self.inflight:
+            self.inflight.popleft().result()
+
+    def wait_for(self, job: _Job) -> None:
+        """Waits until ``job``'s tiles are planned (each call's error is raised here)."""
+        while not job.done and self.inflight:
+            self.inflight.popleft().result()
+
+    def close(self) -> None:
+        try:
+            self.wait_all()
+        finally:
+            for f in self.inflight:
+                f.cancel()
+            self.pool.shutdown(wait=True)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
 
 
 def _finish(job: _Job, simplify_tol: float, join_lifts: bool) -> ImagePlan:

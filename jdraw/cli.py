@@ -115,6 +115,22 @@ def _plan_options(args) -> dict:
     )
 
 
+def _say(line: str, write=None) -> None:
+    """A line on stdout. Once its reader has gone (``jdraw draw ... | head -3``), the
+    rest are dropped and planning goes on: the output files are the job."""
+    try:
+        (write or print)(line, file=sys.stdout)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # Point the descriptor at /dev/null, so no later write or flush fails again.
+        try:
+            null = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(null, sys.stdout.fileno())
+            os.close(null)
+        except (OSError, ValueError):  # no descriptor to point elsewhere
+            sys.stdout = open(os.devnull, "w")  # lives as long as the process
+
+
 def _draw_set(args, images) -> int:
     """Several images (or ``--out-dir``): one stream through the planner, a line per image."""
     from tqdm.auto import tqdm
@@ -142,7 +158,7 @@ def _draw_set(args, images) -> int:
                 raise result
             stats = jobs.write_plan(result, out, **_output_options(args)).stats
             line = jobs.summary(str(path), result, stats, time.perf_counter() - t0)
-            tqdm.write(line, file=sys.stdout)
+            _say(line, tqdm.write)
         except (ValueError, OSError) as e:
             failed += 1
             msg = str(e)
@@ -213,9 +229,9 @@ def _draw(args) -> int:
         opts = robot.RobotOptions(sheet_size_mm=(args.sheet_mm, args.sheet_mm))
         res = robot.closed_loop.image_closed_loop(strokes, shape, faults, args.rounds, opts)
         arm_msg = "\n".join(filter(None, [arm_msg, res.summary()]))
-    print(jobs.summary(image, result, plot, time.perf_counter() - t0))
+    _say(jobs.summary(image, result, plot, time.perf_counter() - t0))
     if arm_msg:
-        print(arm_msg)
+        _say(arm_msg)
     if status:
         print(
             "jdraw: the arm cannot reach every waypoint of this sheet (see jdraw.robot.verify's "

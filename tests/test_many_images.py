@@ -210,3 +210,25 @@ def test_a_planner_error_reaches_the_caller():
 
     with pytest.raises(RuntimeError, match="planner broke"):
         list(tiling.plan_images([_word("hi"), _word("ok")], planner=broken, progress=False))
+
+
+def test_a_reader_that_goes_away_stops_the_lines_not_the_plans(tmp_path, monkeypatch):
+    """``jdraw draw DIR --out-dir OUT ... | head -0``: every plan is still written, no error."""
+    import os
+    import sys
+
+    monkeypatch.setattr(tiling, "default_planner", trace_planner)
+    src = tmp_path / "scans"
+    src.mkdir()
+    for name, text in (("one", "hi"), ("two", "ok")):
+        cv2.imwrite(str(src / f"{name}.png"), _word(text))
+    r, w = os.pipe()
+    os.close(r)  # the reader has gone: a write raises BrokenPipeError
+    gone = os.fdopen(w, "w")
+    monkeypatch.setattr(sys, "stdout", gone)
+    out = tmp_path / "plans"
+    try:
+        assert cli.main(["draw", str(src), "--out-dir", str(out), "--svg", "--no-progress"]) == 0
+    finally:
+        gone.close()
+    assert sorted(p.name for p in out.iterdir()) == ["one.svg", "two.svg"]

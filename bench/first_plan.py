@@ -20,7 +20,9 @@ wall seconds are from process start to exit, measured by this parent. Rows:
 "programs" counts XLA executables the process needed, "compiled" those XLA
 compiled (the rest were read from JAX's cache or jdraw's program store),
 "compile s" the seconds spent compiling or reading them, "peak RSS" the
-process's own. The images are generated under a temporary folder. Results and
+process's own. The rows run with Python's default of writing bytecode
+(``PYTHONDONTWRITEBYTECODE`` is dropped from their environment), as on a
+user's machine. The images are generated under a temporary folder. Results and
 the load they were measured under: docs/speed.md.
 """
 
@@ -169,6 +171,10 @@ def main() -> None:
     cache = work / "cache"
     env = dict(os.environ, JDRAW_CACHE_DIR=str(cache), PYTHONPATH=str(ROOT))
     env.pop("JAX_COMPILATION_CACHE_DIR", None)
+    # Python writes bytecode by default, so a user's second run reads jdraw's modules
+    # compiled; a sandbox that turns it off (PYTHONDONTWRITEBYTECODE=1) would make every
+    # row compile them from source again (0.2-0.3 s a start on a 2-core CPU).
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     out = work / "out"
     out.mkdir(exist_ok=True)
     readme = ["draw", "examples/images/kanji.png", "--png", str(out / "k.png")]

@@ -81,3 +81,19 @@ def test_planning_imports_neither_scipy_ndimage_nor_skimage():
     assert out.returncode == 0, out.stderr[-2000:]
     # The thinning kernel is loaded on its own; no scikit-image package module comes with it.
     assert out.stdout.strip() == "['skimage.morphology._skeletonize_various_cy']"
+
+
+FIT_TOL = 1e-9  # relative: the normal equations against lstsq on a well-posed cubic fit
+
+
+def test_ground_fit_is_least_squares_and_takes_tiny_images(rng):
+    from jdraw.images.ink import _fit
+
+    t = rng.uniform(-1, 1, (500, 10))
+    v = t @ rng.normal(size=10) + 0.01 * rng.normal(size=500)
+    want = np.linalg.lstsq(t, v, rcond=None)[0]
+    np.testing.assert_allclose(_fit(t, v), want, rtol=FIT_TOL, atol=FIT_TOL)
+    # A 2 x 2 image: four points, ten terms (the normal equations are singular).
+    for shape in [(2, 2), (2, 3), (1, 6), (40, 2)]:
+        g = rng.random(shape).astype(np.float32)
+        assert np.isfinite(background(g, "dark")).all(), shape

@@ -73,6 +73,23 @@ def _poly_terms(x: np.ndarray, y: np.ndarray, powers: list[tuple[int, int]]) -> 
     return np.stack([x**i * y**j for i, j in powers], -1)
 
 
+def _fit(t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Least-squares coefficients of ``t @ coef ~ v`` for a few terms and many points.
+
+    The normal equations, summed by einsum rather than BLAS: a system of at most
+    10 x 10, where BLAS's threads would fight the planner's for the cores (a
+    quarter of a second per image in a set instead of a few ms). Too few points,
+    or points on which the terms are not independent (a 2 x 2 image), go to
+    ``lstsq``'s minimum-norm solution.
+    """
+    if len(t) >= 4 * t.shape[1]:
+        try:
+            return np.linalg.solve(np.einsum("ni,nj->ij", t, t), np.einsum("ni,n->i", t, v))
+        except np.linalg.LinAlgError:
+            pass
+    return np.linalg.lstsq(t, v, rcond=None)[0]
+
+
 def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     """The ground's brightness under the ink: ``float32 [H, W]``.
 
@@ -92,11 +109,7 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     sign = 1.0 if polarity == "light" else -1.0
     keep = np.ones(small.shape, bool)
     for _ in range(5):
-        # The normal equations, summed by einsum rather than BLAS: a 10 x 10
-        # system, and BLAS's threads would fight the planner's for the cores
-        # (a tenth of a second per image instead of a few ms when they do).
-        t = terms[keep]
-        coef = np.linalg.solve(np.einsum("ni,nj->ij", t, t), np.einsum("ni,n->i", t, small[keep]))
+        coef = _fit(terms[keep], small[keep])
         r = small - np.einsum("ni,i->n", terms, coef)
         spread = 1.4826 * np.median(np.abs(r[keep] - np.median(r[keep]))) + 1e-4
         ink = (sign * r > 2.0 * spread).reshape(sh, sw).astype(np.uint8)

@@ -9,7 +9,7 @@ from jdraw.images.prepare import prepare
 from jdraw.plans import Plan
 from jdraw.tiling import layout
 from jdraw.tiling import plan_image as tiling
-from jdraw.tiling.stitch import _Chains, stitch
+from jdraw.tiling.stitch import stitch
 from tests.doubles import trace_planner
 from tests.synthetic import centreline_scores, photo_like, text_centrelines
 
@@ -192,14 +192,3 @@ def test_character_sized_image_is_fitted_to_one_canvas():
     prep = prepare(load_image(path))
     _, tiles, regions = layout.layout(prep)
     assert len(tiles) == 1 and len(regions) == 1
-
-
-def test_chains_know_what_one_chain_of_links_holds():
-    c = _Chains(range(6))
-    c.merge(0, 1)
-    c.merge(2, 3)
-    c.merge(1, 3)
-    assert c.connected(0, 2) and c.connected(3, 1)
-    assert not c.connected(0, 4) and not c.connected(4, 5)
-    c.merge(5, 4)
-    assert c.connected(4, 5) and not c.connected(5, 0)

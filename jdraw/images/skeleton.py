@@ -159,41 +159,22 @@ def skeleton_polylines(skel: np.ndarray) -> list[np.ndarray]:
     return [pts[c] for c in _trace(nbrs)]
 
 
-def _deviation(r: np.ndarray, c: np.ndarray, a: int, b: int) -> np.ndarray:
-    """Distance of points ``a+1 .. b-1`` to the segment ``a -> b``: ``float [b - a - 1]``.
+def _farthest(r: list, c: list, a: int, b: int) -> tuple[int, float]:
+    """``(index, distance)`` of the point of ``a+1 .. b-1`` farthest from the segment ``a -> b``.
 
-    ``r`` and ``c`` are the polyline's two coordinate columns. Perpendicular
-    where a point projects inside the segment, else the nearer end's distance.
-    The perpendicular is ``|<q, n>| - <p[a], n>`` with the unit normal ``n``
-    from the segment's angle, as scikit-image's ``approximate_polygon``
-    measures it, so both keep the same points. The ends' distances are worked
-    out only for the few points that project outside.
+    ``r`` and ``c`` are the polyline's coordinate columns as Python floats. The
+    distance is the perpendicular where a point projects inside the segment,
+    else the nearer end's. The perpendicular is ``|<q, n>| - <p[a], n>`` with
+    the unit normal ``n`` from the segment's angle, as scikit-image's
+    ``approximate_polygon`` measures it (the angle's cosine and sine from
+    NumPy, as there), so both keep the same points. One point at a time on
+    Python floats: most of Ramer-Douglas-Peucker's spans are a few points
+    long, where NumPy's per-call overhead is most of the cost.
     """
     r0, c0, r1, c1 = r[a], c[a], r[b], c[b]
     dr, dc = r1 - r0, c1 - c0
-    qr, qc = r[a + 1 : b], c[a + 1 : b]
     ang = -np.arctan2(dr, dc)
-    cos, sin = np.cos(ang), np.sin(ang)
-    dr0, dc0 = qr - r0, qc - c0
-    dr1, dc1 = qr - r1, qc - c1
-    out = (dr0 * dr + dc0 * dc <= 0) | (-dr1 * dr - dc1 * dc <= 0)
-    d = np.abs(qr * cos + qc * sin - (c0 * sin + r0 * cos))
-    if out.any():
-        o0r, o0c, o1r, o1c = dr0[out], dc0[out], dr1[out], dc1[out]
-        d[out] = np.minimum(np.sqrt(o0c**2 + o0r**2), np.sqrt(o1c**2 + o1r**2))
-    return d
-
-
-def _farthest_few(r: list, c: list, a: int, b: int, cos: float, sin: float) -> tuple:
-    """``(index, distance)`` of the farthest of the few points ``a+1 .. b-1``.
-
-    :func:`_deviation`'s arithmetic, one point at a time on Python floats (the
-    same IEEE operations in the same order, so the same numbers): for a
-    handful of points this is several times quicker than NumPy's per-call
-    overhead, and most of Ramer-Douglas-Peucker's calls are on a handful.
-    """
-    r0, c0, r1, c1 = r[a], c[a], r[b], c[b]
-    dr, dc = r1 - r0, c1 - c0
+    cos, sin = float(np.cos(ang)), float(np.sin(ang))
     off = c0 * sin + r0 * cos
     best, at = -1.0, a + 1
     for i in range(a + 1, b):
@@ -208,13 +189,10 @@ def _farthest_few(r: list, c: list, a: int, b: int, cos: float, sin: float) -> t
     return at, best
 
 
-_FEW = 32  # at most this many points between the ends: _farthest_few
-
-
 def simplify(points: np.ndarray, tol: float) -> np.ndarray:
     """Ramer-Douglas-Peucker: drops points within ``tol`` of the kept polyline.
 
-    Distances are to the kept *segments* (:func:`_deviation`), so a stroke that
+    Distances are to the kept *segments* (:func:`_farthest`), so a stroke that
     doubles back keeps its turning point. Written here rather than imported
     from scikit-image, whose polygon module loads SciPy's signal and stats
     packages (seconds at start-up).
@@ -222,8 +200,7 @@ def simplify(points: np.ndarray, tol: float) -> np.ndarray:
     pts = np.asarray(points, np.float64)
     if len(pts) < 3 or tol <= 0:
         return pts
-    r, c = np.ascontiguousarray(pts[:, 0]), np.ascontiguousarray(pts[:, 1])
-    rl, cl = r.tolist(), c.tolist()
+    r, c = pts[:, 0].tolist(), pts[:, 1].tolist()
     keep = np.zeros(len(pts), bool)
     keep[[0, -1]] = True
     todo = [(0, len(pts) - 1)]
@@ -231,13 +208,7 @@ def simplify(points: np.ndarray, tol: float) -> np.ndarray:
         a, b = todo.pop()
         if b - a < 2:
             continue
-        if b - a - 1 <= _FEW:
-            ang = -np.arctan2(r[b] - r[a], c[b] - c[a])  # as _deviation has it
-            m, dmax = _farthest_few(rl, cl, a, b, float(np.cos(ang)), float(np.sin(ang)))
-        else:
-            d = _deviation(r, c, a, b)
-            m = int(np.argmax(d))
-            dmax, m = d[m], m + a + 1
+        m, dmax = _farthest(r, c, a, b)
         if dmax > tol:
             keep[m] = True
             todo += [(m, b), (a, m)]

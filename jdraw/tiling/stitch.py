@@ -5,32 +5,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
+from scipy.cluster.hierarchy import DisjointSet
 
 from jdraw import geometry
-
-
-class _Chains:
-    """Union-find over piece ids: which pieces one chain of links already holds.
-
-    Written here rather than taken from SciPy's ``DisjointSet``, whose module
-    (``scipy.cluster``) costs a start-up a tenth of a second for a dozen lines.
-    """
-
-    def __init__(self, items):
-        self._up = {i: i for i in items}
-
-    def root(self, i):
-        up = self._up
-        while up[i] != i:
-            up[i] = up[up[i]]  # path halving
-            i = up[i]
-        return i
-
-    def connected(self, a, b) -> bool:
-        return self.root(a) == self.root(b)
-
-    def merge(self, a, b) -> None:
-        self._up[self.root(a)] = self.root(b)
 
 
 def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
@@ -209,7 +186,7 @@ def stitch(
     candidates.sort()
     link: dict[tuple[int, int], tuple[int, int]] = {}
     lift_joins = 0
-    chains = _Chains(live)  # links never close a loop
+    chains = DisjointSet(live)  # links never close a loop
 
     for same, _, _, s1, e1, s2, e2 in candidates:
         if (s1, e1) in link or (s2, e2) in link or chains.connected(s1, s2):

@@ -87,16 +87,21 @@ def actions_from_strokes(strokes, start=(0, 0)) -> np.ndarray:
     A pen-up jump to each stroke's start, then its moves; a one-point stroke is a dot.
     The inverse of :func:`strokes_from_actions`.
     """
-    rows = []
+    parts = []
     pos = np.asarray(start, np.int64)
     for s in strokes:
         p = np.rint(np.asarray(s, float)).astype(np.int64)
-        rows.append([*(p[0] - pos), 0])
+        parts.append(np.array([[*(p[0] - pos), 0]], np.int64))
         if len(p) == 1:
-            rows.append([0, 0, 1])
-        rows.extend([*d, 1] for d in np.diff(p, axis=0))
+            parts.append(np.array([[0, 0, 1]], np.int64))
+        else:  # whole arrays, not a list per move: this runs for every stroke of every plan
+            parts.append(
+                np.concatenate([np.diff(p, axis=0), np.ones((len(p) - 1, 1), np.int64)], 1)
+            )
         pos = p[-1]
-    return np.asarray(rows, np.int32).reshape(-1, 3)
+    if not parts:
+        return np.zeros((0, 3), np.int32)
+    return np.concatenate(parts).astype(np.int32)
 
 
 def render(plan: Plan, shape: tuple[int, int] = (geometry.CANVAS, geometry.CANVAS)) -> np.ndarray:

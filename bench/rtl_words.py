@@ -1,6 +1,6 @@
 """Right-to-left words through ``jdraw.plan_image``: where the plan starts and which way it runs.
 
-  python bench/rtl_words.py [--words 8] [--detector-words 12] [--seed 0]
+  python bench/rtl_words.py [--words 8] [--detector-words 12] [--seed 0] [--detector DIR]
 
 Hebrew and Arabic words of our own (jdraw.data.fonts.WORDS) are set in the
 fonts the reading-direction detector never saw (jdraw.data.fonts.DETECTOR_EVAL),
@@ -18,12 +18,15 @@ Per script and setting it prints:
 Latin words (print and Dancing Script) show that left-to-right text keeps its
 positive correlation. A second table gives the detector's accuracy on random
 letters of every script set in the held-out fonts, and on random sketches.
-Needs the fonts (see configs/reading_direction.py for the apt-get line).
+``--detector DIR`` measures another detector (a trainer's ``out`` folder)
+instead of the bundled one. Needs the fonts (see configs/reading_direction.py
+for the apt-get line).
 """
 
 from __future__ import annotations
 
 import argparse
+import pathlib
 import time
 
 import numpy as np
@@ -70,12 +73,20 @@ def main() -> None:
     ap.add_argument("--words", type=int, default=8, help="words per font")
     ap.add_argument("--detector-words", type=int, default=12, help="random drawings per font")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--detector", help="folder of another direction.json/.npz (default: bundled)")
+    ap.add_argument("--only", default="hebrew,arabic,latin", help="scripts of the first table")
+    ap.add_argument("--directions", default="auto,rtl,ltr", help="settings of the first table")
     args = ap.parse_args()
+    from jdraw.images import reading
+
+    if args.detector:
+        reading.ASSET = pathlib.Path(args.detector).resolve()  # what plan_image's detect loads
+        print(f"detector: {reading.ASSET} ({reading.load().pool}, {reading.load().threshold:.2f})")
     print("| script | direction | words | read rtl | first stroke in first letter | rho |")
     print("| --- | --- | ---: | ---: | ---: | ---: |")
     t0 = time.perf_counter()
-    for script in ("hebrew", "arabic", "latin"):
-        for direction in (None, "rtl", "ltr"):
+    for script in args.only.split(","):
+        for direction in [None if d == "auto" else d for d in args.directions.split(",")]:
             r = measure(script, args.words, np.random.default_rng(args.seed), direction)
             print(
                 f"| {script} | {direction or 'auto'} | {r['words']} | {r['read_rtl']:.2f} | "
@@ -84,8 +95,10 @@ def main() -> None:
             )
     print(f"\n({time.perf_counter() - t0:.0f} s)\n")
 
+    import sys
+
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))  # configs/
     import configs.reading_direction as cfg_module
-    from jdraw.images import reading
     from jdraw.train import reading as training
 
     cfg = cfg_module.get_config()

@@ -17,9 +17,11 @@ Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EV
 Random letters of 15 scripts set in the training fonts (words_per_script
 drawings per left-to-right script, rtl_words_per_script per right-to-left
 one) and random sketches are cut into line windows, each line also stretched
-along x; a three-layer CNN is fitted on them. Its threshold is set on
-drawings in the validation fonts (at most max_false_rtl of left-to-right ones
-read right to left), and it is written to ``out``, the package's
+along x (kept in the workdir, so a rerun fits at once); a small CNN is fitted
+on them, each batch distorted (``augment``), with an Orbax checkpoint every 500
+steps. Its pooling and threshold are set on drawings in the validation fonts
+(at most max_false_rtl of left-to-right ones read right to left), and it is
+written to ``out``, the package's
 jdraw/assets/reading, with its provenance and its accuracy on drawings set
 in the held-out fonts.
 
@@ -39,6 +41,7 @@ def get_config() -> ml_collections.ConfigDict:
     c.words_per_script = 300  # drawings per left-to-right script
     c.rtl_words_per_script = 1500  # drawings per right-to-left script
     c.sketches = 600
+    c.cursive_words = 600  # drawings of joined-up English (EMS Allure train words), left to right
     c.min_height = 30  # px, ink height of a drawing
     c.max_height = 160
     c.two_words = 0.3  # fraction of drawings with two words
@@ -50,6 +53,8 @@ def get_config() -> ml_collections.ConfigDict:
     c.steps = 3000
     c.batch = 256
     c.learning_rate = 3e-3
+    c.augment = 1.0  # strength of jdraw.train.reading.augment's distortions (0: thickening only)
+    c.pool = "choose"  # window pooling: "logit", "prob", or "choose" on the validation fonts
     c.val_words_per_font = 20  # drawings per validation font, for the threshold
     c.max_false_rtl = 0.0  # left-to-right validation drawings allowed to read rtl
     c.eval_words_per_font = 12
@@ -62,6 +67,7 @@ def tiny() -> ml_collections.ConfigDict:
     c.words_per_script = 2
     c.rtl_words_per_script = 2
     c.sketches = 2
+    c.cursive_words = 2
     c.steps = 3
     c.batch = 16
     c.val_words_per_font = 1

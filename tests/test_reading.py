@@ -7,6 +7,7 @@ need no font installed.
 
 import pathlib
 
+import jax
 import numpy as np
 import pytest
 from flax import nnx
@@ -19,6 +20,7 @@ from jdraw.planner import ranker
 from jdraw.planner.plan import load_ranker
 from jdraw.tiling import layout
 from jdraw.tiling import plan_image as tiling
+from jdraw.train import reading as training
 from tests.doubles import trace_planner
 from tests.synthetic import photo_like
 
@@ -189,3 +191,98 @@ def test_threshold_and_width_are_stored_with_the_net(tmp_path):
     assert reading.detect(prep, again) == "rtl"  # any score beats -50
     again.threshold = 50.0
     assert reading.detect(prep, again) == "ltr"
+
+
+def test_an_interrupted_fit_goes_on_from_its_checkpoint_as_if_it_had_not_stopped(tmp_path):
+    rng = np.random.default_rng(0)
+    x = (rng.random((40, reading.WINDOW, reading.WINDOW)) < 0.1).astype(np.uint8) * 255
+    y = np.arange(40) % 2 == 0
+    kw = dict(steps=4, batch=8, lr=1e-2, channels=(4, 4), seed=0, augment_strength=1.0)
+    whole, _ = training.fit(x, y, **kw)
+    training.fit(x, y, **kw, workdir=tmp_path, checkpoint_every=3, stop_after=2)  # stopped
+    assert (tmp_path / "fit" / "2").is_dir()
+    again, log = training.fit(x, y, **kw, workdir=tmp_path, checkpoint_every=3)
+    assert (tmp_path / "fit" / "4").is_dir()
+    for a, b in zip(jax.tree.leaves(nnx.state(whole)), jax.tree.leaves(nnx.state(again))):
+        np.testing.assert_allclose(np.asarray(a), np.asarray(b), rtol=1e-6, atol=1e-7)
+    assert [e["step"] for e in log] == [0, 3]  # the log of the first two steps came back too
+    done, log = training.fit(x, y, **kw, workdir=tmp_path)  # finished: fits nothing
+    for a, b in zip(jax.tree.leaves(nnx.state(whole)), jax.tree.leaves(nnx.state(done))):
+        np.testing.assert_allclose(np.asarray(a), np.asarray(b), rtol=1e-6, atol=1e-7)
+
+
+def test_augment_keeps_shapes_and_range_and_distorts(tmp_path):
+    rng = np.random.default_rng(1)
+    xb = np.zeros((16, reading.WINDOW, 64), np.float32)
+    xb[:, 14:16, 8:56] = 1.0  # a horizontal bar
+    out = training.augment(xb, rng, 1.0)
+    assert out.shape == xb.shape and out.min() >= 0.0 and out.max() <= 1.0
+    assert not np.allclose(out, xb)
+    rows = [np.flatnonzero(o.sum(1) > 0) for o in out]
+    assert len({(r.min(), r.max()) for r in rows}) > 3  # windows distorted differently
+
+
+def test_examples_are_made_once_per_data_setting(tmp_path, monkeypatch):
+    from configs import reading_direction as rd
+
+    cfg = rd.tiny()
+    per = {s: 1 for s in training.F.DETECTOR_TRAIN}
+    calls = []
+
+    def fake(fonts, per_script, sketches, cfg, seed):
+        calls.append(seed)
+        return np.zeros((3, 32, 64), np.uint8), np.array([True, False, True]), np.zeros(3, int)
+
+    monkeypatch.setattr(training, "make_examples", fake)
+    x, y = training._cached_examples(cfg, tmp_path, per)
+    x2, y2 = training._cached_examples(cfg, tmp_path, per)
+    assert calls == [cfg.seed] and x2.shape == (3, 32, 64) and y2.tolist() == y.tolist()
+    cfg.seed = 5
+    training._cached_examples(cfg, tmp_path, per)
+    assert calls == [0, 5]  # another data setting: made again
+
+
+POOL_TOL = 1e-9  # float64 sums of a few terms
+
+
+def test_probability_pooling_bounds_what_one_sure_window_can_say(tmp_path):
+    z, ink = np.array([40.0, -2.0, -2.0, -2.0, -2.0]), np.ones(5)
+    assert reading.pool_scores(z, ink, "logit") == pytest.approx(6.4, abs=POOL_TOL)  # outvoted
+    p = (1.0 + 4.0 / (1.0 + np.exp(2.0))) / 5.0
+    assert reading.pool_scores(z, ink, "prob") == pytest.approx(np.log(p / (1 - p)), abs=POOL_TOL)
+    assert reading.pool_scores(z, ink, "prob") < 0  # the four windows win
+    for pool in ("logit", "prob"):  # windows that agree: their logit, either way; ink weighs
+        assert reading.pool_scores(np.full(3, 1.5), np.arange(1.0, 4.0), pool) == pytest.approx(
+            1.5, abs=POOL_TOL
+        )
+    for pool in reading.POOLS:
+        assert reading.pool_scores(np.zeros(0), np.zeros(0), pool) == -np.inf
+    # Evidence: the mean times sqrt(n); n counts windows by their ink.
+    for n in (1, 4, 16):
+        got = reading.pool_scores(np.full(n, 0.5), np.full(n, 7.0), "evidence")
+        assert got == pytest.approx(0.5 * np.sqrt(n), abs=POOL_TOL)
+    got = reading.pool_scores(np.array([1.0, 1.0]), np.array([1.0, 0.0]), "evidence")
+    assert got == pytest.approx(1.0, abs=POOL_TOL)  # a window with no ink adds nothing
+    assert reading.pool_scores(np.array([3.0, -1.0]), np.array([1.0, 3.0]), "logit") == 0.0
+    with pytest.raises(ValueError, match="pool"):
+        reading.pool_scores(z, ink, "max")
+    net = reading.DirectionNet((4, 4), pool="prob", rngs=nnx.Rngs(0))
+    reading.save(net, tmp_path)
+    assert reading.load(tmp_path).pool == "prob"
+
+
+def test_cursive_drawings_join_the_detector_splits_by_word_split():
+    from configs import reading_direction as rd
+
+    cfg = rd.tiny()
+    train, val, held = training._font_splits(cfg)
+    assert (train["cursive"], val["cursive"], held["cursive"]) == (["train"], ["val"], ["test"])
+    assert val["sketch"] == held["sketch"] == [None] and "sketch" not in train
+    cfg.cursive_words = 0
+    assert all("cursive" not in d for d in training._font_splits(cfg))
+    cfg.slant, cfg.two_words = 0.0, 0.0
+    img = training.sample("cursive", "val", np.random.default_rng(0), cfg)
+    ink = img < 128
+    assert img.dtype == np.uint8 and ink.any() and not ink[0].any() and not ink[:, 0].any()
+    rows = np.flatnonzero(ink.any(1))
+    assert cfg.min_height - 2 <= rows[-1] - rows[0] + 1 <= cfg.max_height + 8  # ink height, pen

@@ -11,8 +11,12 @@ Devanagari, Tamil, Hangul, CJK and sketches are planned left to right.
    size do not matter;
 2. a small CNN (:class:`DirectionNet`) scores every window ``WINDOW`` px high
    and the net's ``width`` wide along each line (:func:`windows`);
-3. the window logits, weighted by their ink, are averaged; a mean above
-   ``THRESHOLD`` is right to left.
+3. the window logits, weighted by their ink, are pooled into the drawing's
+   score (:func:`pool_scores`): their mean (``pool="logit"``), their mean
+   probability as a logit (``"prob"``), or their mean times the square root
+   of the number of windows (``"evidence"``: a long line of text says more
+   than two letters do, as a mean of n noisy votes is sqrt(n) times surer);
+   a score above the net's threshold is right to left.
 
 The threshold is part of the trained detector (``direction.json``): the
 trainer sets it on drawings in fonts it neither fits nor measures on
@@ -46,6 +50,7 @@ STRIDE = 16  # px between windows along a line
 THRESHOLD = 1.5  # mean window logit above which a drawing reads right to left, if not stored
 ASSET = pathlib.Path(__file__).resolve().parent.parent / "assets" / "reading"
 DIRECTIONS = ("ltr", "rtl")
+POOLS = ("logit", "prob", "evidence")  # how window logits become a drawing's score
 
 
 class DirectionNet(nnx.Module):
@@ -56,11 +61,14 @@ class DirectionNet(nnx.Module):
 
     def __init__(
         self, channels: tuple[int, ...] = (8, 16, 24), threshold: float = THRESHOLD,
-        width: int = WINDOW, *, rngs: nnx.Rngs,
+        width: int = WINDOW, pool: str = "logit", *, rngs: nnx.Rngs,
     ):  # fmt: skip
+        if pool not in POOLS:
+            raise ValueError(f"pool must be one of {POOLS}, not {pool!r}")
         self.channels = tuple(channels)
-        self.threshold = float(threshold)  # mean window logit above which a drawing is rtl
+        self.threshold = float(threshold)  # drawing score above which it is rtl
         self.width = int(width)  # px, width of the windows it reads
+        self.pool = pool  # how window logits are pooled into the drawing's score
         din = (1, *channels[:-1])
         self.convs = nnx.List(
             [nnx.Conv(a, b, (3, 3), padding="SAME", rngs=rngs) for a, b in zip(din, channels)]
@@ -175,13 +183,35 @@ def window_logits(net: DirectionNet, x: np.ndarray) -> np.ndarray:
     return np.asarray(net_call(_logits, g, st, pad))[: len(x)]
 
 
+def pool_scores(logits: np.ndarray, ink: np.ndarray, pool: str = "logit") -> float:
+    """A drawing's score from its windows' ``logits`` and ``ink``; ``-inf`` for no window.
+
+    ``"logit"``: the ink-weighted mean logit. ``"prob"``: the ink-weighted mean
+    probability, as a logit (clipped to +-20), so that each window's say is bounded.
+    ``"evidence"``: the mean logit times ``sqrt(n)``, ``n`` the windows' number
+    weighted by ink (``sum(ink)**2 / sum(ink**2)``, n for equal ink).
+    """
+    if len(logits) == 0:
+        return -np.inf
+    w = np.asarray(ink, np.float64) / np.sum(ink)
+    z = np.asarray(logits, np.float64)
+    if pool == "logit":
+        return float(np.sum(z * w))
+    if pool == "evidence":
+        return float(np.sum(z * w) / np.sqrt(np.sum(w * w)))
+    if pool == "prob":
+        p = np.clip(np.sum(w / (1.0 + np.exp(-np.clip(z, -50, 50)))), 2e-9, 1 - 2e-9)
+        return float(np.log(p) - np.log1p(-p))
+    raise ValueError(f"pool must be one of {POOLS}, not {pool!r}")
+
+
 def rtl_score(prep: Prepared, net: DirectionNet | None = None) -> float:
-    """Mean window logit, weighted by ink: above the net's ``threshold`` reads right to left."""
+    """The drawing's score (:func:`pool_scores`): above ``net.threshold`` reads right to left."""
     net = net or load()
     x, ink = drawing_windows(prep, net.width)
     if len(x) == 0:
         return -np.inf
-    return float(np.sum(window_logits(net, x) * ink) / np.sum(ink))
+    return pool_scores(window_logits(net, x), ink, net.pool)
 
 
 def detect(prep: Prepared, net: DirectionNet | None = None) -> str:
@@ -201,6 +231,7 @@ def save(net: DirectionNet, out_dir=ASSET, provenance: dict | None = None) -> pa
         "channels": list(net.channels),
         "threshold": net.threshold,
         "width": net.width,
+        "pool": net.pool,
         "provenance": provenance or {},
     }
     return bundle.save_net(net, out_dir, "direction", meta)
@@ -218,7 +249,7 @@ def _load(folder: str) -> DirectionNet:
     def build(meta):
         return DirectionNet(
             meta["channels"], meta.get("threshold", THRESHOLD), meta.get("width", WINDOW),
-            rngs=nnx.Rngs(0),
+            meta.get("pool", "logit"), rngs=nnx.Rngs(0),
         )  # fmt: skip
 
     net = bundle.load_net(folder, "direction", build)

@@ -14,6 +14,9 @@ into line windows; the net learns the word's direction from every window.
 
 from __future__ import annotations
 
+import hashlib
+import json
+import pathlib
 import time
 
 import cv2
@@ -61,8 +64,48 @@ def _slant(img: np.ndarray, shear: float) -> np.ndarray:
     )
 
 
+def cursive_sample(split: str, rng: np.random.Generator, cfg) -> np.ndarray:
+    """Joined-up English (EMS Allure, :mod:`jdraw.data.cursive`): ``uint8 [H, W]``.
+
+    One or two words of ``split``'s word list, written with a pen 1 px to a
+    fifteenth of the height thick, sometimes slanted. Cursive Latin runs its
+    letters together along a baseline as Arabic does; without it the detector
+    read some joined script fonts right to left.
+    """
+    from jdraw.data import cursive
+
+    words = cursive.split_words(split)
+    n = 1 + int(rng.random() < cfg.two_words)
+    text = [words[int(k)] for k in rng.integers(0, len(words), n)]
+    strokes, x = [], 0.0
+    for word in text:  # font units, y down; a space of 300 units between words
+        got = cursive.word_strokes(word)
+        lo = min(float(p[:, 0].min()) for p in got)
+        strokes += [p + (x - lo, 0.0) for p in got]
+        x = max(float(p[:, 0].max()) for p in strokes) + 300.0
+    pts = np.concatenate(strokes)
+    lo, hi = pts.min(0), pts.max(0)
+    height = int(rng.integers(cfg.min_height, cfg.max_height + 1))
+    k = height / max(float(hi[1] - lo[1]), 1e-9)
+    pen = int(rng.integers(1, max(2, height // 15) + 1))
+    pad = 8 + pen
+    img = np.full((height + 2 * pad + 1, int(np.ceil((hi[0] - lo[0]) * k)) + 2 * pad + 1), 255)
+    img = img.astype(np.uint8)
+    for p in strokes:
+        q = np.round(((p - lo) * k + pad) * 16).astype(np.int32).reshape(-1, 1, 2)
+        cv2.polylines(img, [q], False, 0, pen, cv2.LINE_AA, 4)
+    if rng.random() < cfg.slant:
+        img = _slant(img, float(rng.uniform(-0.35, 0.35)))
+    return img
+
+
 def sample(script: str, font: str, rng: np.random.Generator, cfg) -> np.ndarray:
-    """One random training drawing of ``script`` set in ``font``: ``uint8 [H, W]``."""
+    """One random training drawing of ``script`` set in ``font``: ``uint8 [H, W]``.
+
+    ``script="cursive"``: :func:`cursive_sample`, ``font`` naming the word split.
+    """
+    if script == "cursive":
+        return cursive_sample(font, rng, cfg)
     words = [
         F.random_word(script, rng, font=font) for _ in range(1 + int(rng.random() < cfg.two_words))
     ]
@@ -122,10 +165,49 @@ def make_examples(fonts_by_script: dict, words_per_script, sketches: int, cfg, s
     return np.concatenate(xs), np.concatenate(ys), np.concatenate(gs)
 
 
-def fit(x, y, *, steps: int, batch: int, lr: float, channels, seed: int = 0):
+def augment(xb: np.ndarray, rng: np.random.Generator, strength: float = 1.0) -> np.ndarray:
+    """Windows ``xb [B, H, W]`` in [0, 1], each distorted as another font or hand might draw it.
+
+    Per window: the ink thickened by a pixel across or along the line (half of
+    them), the line's height off by up to 2 px; with ``strength`` > 0 also
+    scaled in height by up to ``1 +- 0.15 * strength``, its baseline tilted
+    (a vertical shear up to ``0.12 * strength``) and its letters slanted (a
+    horizontal shear up to ``0.3 * strength``), all about the window's centre.
+    """
+    out = np.empty_like(xb)
+    b, h, w = xb.shape
+    for i in range(b):
+        v = xb[i]
+        if strength > 0:
+            sy = 1.0 + strength * 0.15 * rng.uniform(-1, 1)
+            tilt = strength * 0.12 * rng.uniform(-1, 1)
+            slant = strength * 0.3 * rng.uniform(-1, 1)
+            a = np.array([[1.0, slant], [tilt, sy]])
+            c = np.array([w / 2.0, h / 2.0])
+            m = np.concatenate([a, (c - a @ c)[:, None]], axis=1)
+            v = cv2.warpAffine(v, m, (w, h), flags=cv2.INTER_LINEAR, borderValue=0.0)
+        r = rng.random()
+        if r < 0.25:
+            v = np.maximum(v, np.roll(v, 1, axis=0))
+        elif r < 0.5:
+            v = np.maximum(v, np.roll(v, 1, axis=1))
+        out[i] = np.roll(v, int(rng.integers(-2, 3)), axis=0)  # the line's height is not exact
+    return out
+
+
+def fit(
+    x, y, *, steps: int, batch: int, lr: float, channels, seed: int = 0,
+    augment_strength: float = 0.0, workdir=None, checkpoint_every: int = 500,
+    stop_after: int | None = None,
+):  # fmt: skip
     """Fits a :class:`reading.DirectionNet` on windows ``x [n, H, W] uint8`` and labels ``y [n]``.
 
-    The two classes are sampled equally often. Returns the net and a log.
+    The two classes are sampled equally often, and every batch is distorted
+    (:func:`augment`). With ``workdir``, an Orbax checkpoint is written there
+    (``fit/``) every ``checkpoint_every`` steps and at the end, and a fit that
+    finds one goes on from it, as if it had not stopped (one that finds the last
+    step's fits nothing: a rerun only measures). ``stop_after``: stop, with a
+    checkpoint, after this many steps of this call. Returns the net and a log.
     """
     net = reading.DirectionNet(tuple(channels), width=x.shape[2], rngs=nnx.Rngs(seed))
     graphdef, params = nnx.split(net, nnx.Param)
@@ -143,20 +225,36 @@ def fit(x, y, *, steps: int, batch: int, lr: float, channels, seed: int = 0):
         upd, opt = tx.update(g, opt, params)
         return optax.apply_updates(params, upd), opt, loss, acc
 
-    rng = np.random.default_rng(seed)
+    mgr, start, logs = None, 0, []
+    if workdir is not None:
+        import orbax.checkpoint as ocp
+
+        folder = pathlib.Path(workdir).resolve() / "fit"
+        mgr = ocp.CheckpointManager(folder, options=ocp.CheckpointManagerOptions(max_to_keep=1))
+        last = mgr.latest_step()
+        if last is not None:
+            got = mgr.restore(last, args=ocp.args.StandardRestore({"params": params, "opt": opt}))
+            params, opt, start = got["params"], got["opt"], last
+            logs = json.loads((folder / "log.json").read_text())
     pos, neg = np.flatnonzero(y), np.flatnonzero(~y)
-    logs = []
-    for s in tqdm(range(steps), desc="fit", unit="step"):
+    for s in tqdm(range(start, steps), desc="fit", unit="step", initial=start, total=steps):
+        rng = np.random.default_rng([seed, s])  # each step's batch: the same after a resume
         idx = np.concatenate(
             [rng.choice(pos, batch // 2), rng.choice(neg, batch - batch // 2)]
         )  # fmt: skip
-        xb = x[idx].astype(np.float32) / 255.0
-        if rng.random() < 0.5:  # ink of any weight: thicken some windows by a pixel
-            xb = np.maximum(xb, np.roll(xb, 1, axis=1))
-        xb = np.roll(xb, int(rng.integers(-2, 3)), axis=1)  # the line's height is not exact
+        xb = augment(x[idx].astype(np.float32) / 255.0, rng, augment_strength)
         params, opt, loss, acc = step(params, opt, xb, y[idx].astype(np.float32))
         if s % 500 == 0 or s == steps - 1:
             logs.append({"step": s, "loss": float(loss), "window_acc": float(acc)})
+        done, stop = s + 1, stop_after is not None and s + 1 - start >= stop_after
+        if mgr is not None and (done % checkpoint_every == 0 or done == steps or stop):
+            import orbax.checkpoint as ocp
+
+            mgr.save(done, args=ocp.args.StandardSave({"params": params, "opt": opt}))
+            mgr.wait_until_finished()
+            (folder / "log.json").write_text(json.dumps(logs))
+        if stop:
+            break
     nnx.update(net, params)
     return net, logs
 
@@ -183,21 +281,45 @@ def accuracy(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int = 1
     return out
 
 
-def scores(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int) -> dict:
-    """``{script: [rtl_score, ...]}`` of random drawings set in each script's fonts."""
+def scores(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int, pool=None) -> dict:
+    """``{script: [rtl_score, ...]}`` of random drawings set in each script's fonts.
+
+    ``pool``: one of :data:`reading.POOLS` (default the net's), or a tuple of
+    them, for ``{pool: {script: [...]}}`` from the same drawings.
+    """
+    pools = (pool or net.pool,) if isinstance(pool, str | None) else tuple(pool)
     rng = np.random.default_rng(seed)
-    out = {}
+    out = {p: {} for p in pools}
     for script, names in fonts_by_script.items():
-        got = []
+        got = {p: [] for p in pools}
         for font in names:
             for _ in range(words_per_font):
                 img = sketch(rng) if script == "sketch" else sample(script, font, rng, cfg)
                 try:
-                    got.append(reading.rtl_score(prepare(img), net))
+                    x, ink = reading.drawing_windows(prepare(img), net.width)
                 except ValueError:  # too little ink left to read
                     continue
-        out[script] = got
-    return out
+                z = reading.window_logits(net, x)
+                for p in pools:
+                    got[p].append(reading.pool_scores(z, ink, p))
+        for p in pools:
+            out[p][script] = got[p]
+    return out[pools[0]] if isinstance(pool, str | None) else out
+
+
+def _recall(by_script: dict, threshold: float) -> float:
+    """Fraction of right-to-left drawings in ``by_script`` scoring above ``threshold``."""
+    rtl = [v for s, got in by_script.items() if s in F.RTL_SCRIPTS for v in got]
+    return float(np.mean(np.array(rtl) > threshold)) if rtl else 0.0
+
+
+def _summary(by_script: dict) -> dict:
+    """Each script's score quantiles (min, 10%, median, 90%, max), rounded."""
+    qs = [0.0, 0.1, 0.5, 0.9, 1.0]
+    return {
+        s: [round(float(q), 2) for q in np.quantile(np.array(v)[np.isfinite(v)], qs)]
+        for s, v in by_script.items() if np.isfinite(v).any()
+    }  # fmt: skip
 
 
 def choose_threshold(by_script: dict, max_false_rtl: float) -> float:
@@ -214,46 +336,101 @@ def choose_threshold(by_script: dict, max_false_rtl: float) -> float:
     return float(max(ltr[len(ltr) - 1 - allowed], 0.0))
 
 
+def _font_splits(cfg) -> tuple[dict, dict, dict]:
+    """``{script: fonts}`` to fit on, to set the threshold on, and to measure on.
+
+    With ``cfg.cursive_words``, ``"cursive"`` (:func:`cursive_sample`) joins
+    each, its "fonts" the cursive word splits: train, val and test.
+    """
+    train = dict(F.DETECTOR_TRAIN)
+    val = {s: F.DETECTOR_VAL.get(s, names) for s, names in F.DETECTOR_TRAIN.items()}
+    held = dict(F.DETECTOR_EVAL)
+    if cfg.get("cursive_words", 0):
+        train["cursive"], val["cursive"], held["cursive"] = ["train"], ["val"], ["test"]
+    val["sketch"] = held["sketch"] = [None]
+    return train, val, held
+
+
+def _cached_examples(cfg, workdir, per_script: dict, fonts_by_script=None):
+    """:func:`make_examples` of the training fonts, kept in ``workdir/examples.npz``.
+
+    They take most of a run's making time; a rerun (an interrupted fit, another
+    fit setting) with the same data settings reads them back.
+    """
+    keys = (
+        "seed", "words_per_script", "rtl_words_per_script", "sketches", "min_height",
+        "max_height", "two_words", "marker", "slant", "stretch", "width",
+    )  # fmt: skip
+    fonts_by_script = fonts_by_script or F.DETECTOR_TRAIN
+    want = {k: cfg.get(k) for k in keys} | {"fonts": fonts_by_script}
+    if cfg.get("cursive_words", 0):
+        want["cursive_words"] = cfg.cursive_words
+    tag = hashlib.sha256(json.dumps(want, sort_keys=True).encode()).hexdigest()[:16]
+    path = pathlib.Path(workdir) / f"examples-{tag}.npz"
+    if path.exists():
+        with np.load(path) as z:
+            return z["x"], z["y"]
+    x, y, _ = make_examples(fonts_by_script, per_script, cfg.sketches, cfg, seed=cfg.seed)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp.npz")
+    np.savez(tmp, x=x, y=y)
+    tmp.replace(path)
+    return x, y
+
+
 def train(cfg, workdir) -> dict:
     """Makes examples, fits the detector, sets its threshold, measures it; writes it to ``cfg.out``.
 
-    The threshold comes from drawings in :data:`jdraw.data.fonts.DETECTOR_VAL`
-    (fonts neither fitted on nor measured on) and in the training fonts of the
-    scripts that have no validation font, drawn with another seed.
+    The threshold and the pooling (:data:`reading.POOLS`; ``cfg.pool``, or
+    ``"choose"``: the one that reads more right-to-left validation drawings
+    right to left at its threshold) come from drawings in
+    :data:`jdraw.data.fonts.DETECTOR_VAL` (fonts neither fitted on nor measured
+    on) and in the training fonts of the scripts that have no validation font,
+    drawn with another seed.
     """
     t0 = time.perf_counter()
+    train_fonts, val_fonts, held = _font_splits(cfg)
     per_script = {
         s: cfg.rtl_words_per_script if s in F.RTL_SCRIPTS else cfg.words_per_script
-        for s in F.DETECTOR_TRAIN
+        for s in train_fonts
     }
-    x, y, _ = make_examples(F.DETECTOR_TRAIN, per_script, cfg.sketches, cfg, seed=cfg.seed)
+    if "cursive" in train_fonts:
+        per_script["cursive"] = cfg.cursive_words
+    x, y = _cached_examples(cfg, workdir, per_script, train_fonts)
     t1 = time.perf_counter()
     net, logs = fit(
         x, y, steps=cfg.steps, batch=cfg.batch, lr=cfg.learning_rate, channels=cfg.channels,
-        seed=cfg.seed,
+        seed=cfg.seed, augment_strength=cfg.get("augment", 0.0), workdir=workdir,
     )  # fmt: skip
     t2 = time.perf_counter()
-    val_fonts = {s: F.DETECTOR_VAL.get(s, names) for s, names in F.DETECTOR_TRAIN.items()}
-    val_fonts["sketch"] = [None]
-    val = scores(net, val_fonts, cfg.val_words_per_font, cfg, seed=cfg.seed + 2)
-    net.threshold = choose_threshold(val, cfg.max_false_rtl)
+    pool = cfg.get("pool", "logit")
+    by_pool = scores(net, val_fonts, cfg.val_words_per_font, cfg, cfg.seed + 2, pool=reading.POOLS)
+    cut = {p: choose_threshold(v, cfg.max_false_rtl) for p, v in by_pool.items()}
+    recall = {p: _recall(by_pool[p], cut[p]) for p in by_pool}
+    if pool == "choose":
+        pool = max(reading.POOLS, key=lambda p: (recall[p], p == "logit"))
+    net.pool, net.threshold = pool, cut[pool]
+    val = by_pool[pool]
     val_acc = {
         s: float(np.mean((np.array(v) > net.threshold) == (s in F.RTL_SCRIPTS)))
         for s, v in val.items() if v
     }  # fmt: skip
-    held = {**F.DETECTOR_EVAL, "sketch": [None]}
     acc = accuracy(net, held, cfg.eval_words_per_font, cfg, seed=cfg.seed + 1)
     t3 = time.perf_counter()
     provenance = {
         "command": f"python train.py --config configs/reading_direction.py --workdir {workdir}",
         "config": cfg.to_dict(),
-        "train_fonts": F.DETECTOR_TRAIN,
-        "val_fonts": F.DETECTOR_VAL,
-        "eval_fonts": F.DETECTOR_EVAL,
+        "train_fonts": train_fonts,
+        "val_fonts": val_fonts,
+        "eval_fonts": held,
         "windows": int(len(x)),
         "rtl_windows": int(y.sum()),
         "log": logs,
         "threshold": net.threshold,
+        "pool": net.pool,
+        "val_thresholds": cut,
+        "val_rtl_recall": recall,
+        "val_scores": {p: _summary(v) for p, v in by_pool.items()},
         "val_accuracy": val_acc,
         "held_out_accuracy": acc,
         "seconds": {"examples": round(t1 - t0), "fit": round(t2 - t1), "measure": round(t3 - t2)},
@@ -261,5 +438,6 @@ def train(cfg, workdir) -> dict:
     reading.save(net, cfg.out, provenance)
     return {
         "out": str(cfg.out), "windows": len(x), "log": logs[-1], "threshold": net.threshold,
-        "val_accuracy": val_acc, "held_out_accuracy": acc,
+        "pool": net.pool, "val_rtl_recall": recall, "val_accuracy": val_acc,
+        "held_out_accuracy": acc,
     }  # fmt: skip

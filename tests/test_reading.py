@@ -26,7 +26,15 @@ from tests.synthetic import photo_like
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples" / "images").glob("*"))
-RTL_WORDS = [ROOT / "tests" / "data" / n for n in ("hebrew_noto_serif.png", "arabic_amiri.png")]
+RTL_WORDS = [
+    ROOT / "tests" / "data" / "hebrew_noto_serif.png",
+    # The bundled detector reads about 0.7 of Arabic drawings in held-out fonts right to
+    # left (docs/reading_direction.md); this word is one it misses (3.8, threshold 5.5).
+    pytest.param(
+        ROOT / "tests" / "data" / "arabic_amiri.png",
+        marks=pytest.mark.xfail(strict=True, reason="a known miss of the bundled detector"),
+    ),
+]
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)

@@ -33,7 +33,6 @@ from jdraw.train.reading_data import (  # noqa: F401 (the drawings; named here t
     augment,
     cursive_sample,
     sample,
-    sketch,
     stretch,
 )
 
@@ -58,7 +57,7 @@ def make_examples(fonts_by_script: dict, words_per_script, sketches: int, cfg, s
     jobs = _jobs(fonts_by_script, words_per_script, sketches)
     xs, ys, gs = [], [], []
     for g, (script, font) in enumerate(tqdm(jobs, desc="drawings", unit="drawing")):
-        img = sketch(rng) if script == "sketch" else sample(script, font, rng, cfg)
+        img = sample(script, font, rng, cfg)
         try:
             lines = reading.line_images(prepare(img))
         except ValueError:  # a word too small to keep any ink
@@ -142,38 +141,29 @@ def accuracy(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int = 1
     """Fraction of whole drawings :func:`reading.detect` reads right, per script.
 
     ``words_per_font`` random drawings per font; ``"sketch"``: random sketches.
+    The scores are :func:`scores`' in the net's pooling; a drawing with no
+    window scores ``-inf`` and so reads left to right, as ``detect`` does.
     """
-    rng = np.random.default_rng(seed)
-    out = {}
-    for script, names in fonts_by_script.items():
-        right = total = 0
-        for font in names:
-            for _ in range(words_per_font):
-                img = sketch(rng) if script == "sketch" else sample(script, font, rng, cfg)
-                try:
-                    got = reading.detect(prepare(img), net)
-                except ValueError:  # too little ink left to read
-                    continue
-                right += got == ("rtl" if script in F.RTL_SCRIPTS else "ltr")
-                total += 1
-        out[script] = right / max(total, 1)
-    return out
+    by_script = scores(net, fonts_by_script, words_per_font, cfg, seed, (net.pool,))[net.pool]
+    return {
+        s: float(np.mean((np.array(v) > net.threshold) == (s in F.RTL_SCRIPTS))) if v else 0.0
+        for s, v in by_script.items()
+    }  # fmt: skip
 
 
-def scores(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int, pool=None) -> dict:
-    """``{script: [rtl_score, ...]}`` of random drawings set in each script's fonts.
+def scores(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int, pools) -> dict:
+    """``{pool: {script: [rtl_score, ...]}}`` of random drawings set in each script's fonts.
 
-    ``pool``: one of :data:`reading.POOLS` (default the net's), or a tuple of
-    them, for ``{pool: {script: [...]}}`` from the same drawings.
+    ``pools``: names from :data:`reading.POOLS`; every pooling scores the same
+    drawings. A drawing too small to keep any ink is left out.
     """
-    pools = (pool or net.pool,) if isinstance(pool, str | None) else tuple(pool)
     rng = np.random.default_rng(seed)
     out = {p: {} for p in pools}
     for script, names in fonts_by_script.items():
         got = {p: [] for p in pools}
         for font in names:
             for _ in range(words_per_font):
-                img = sketch(rng) if script == "sketch" else sample(script, font, rng, cfg)
+                img = sample(script, font, rng, cfg)
                 try:
                     x, ink = reading.drawing_windows(prepare(img), net.width)
                 except ValueError:  # too little ink left to read
@@ -183,7 +173,7 @@ def scores(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int, pool
                     got[p].append(reading.pool_scores(z, ink, p))
         for p in pools:
             out[p][script] = got[p]
-    return out[pools[0]] if isinstance(pool, str | None) else out
+    return out
 
 
 def _recall(by_script: dict, threshold: float) -> float:
@@ -231,10 +221,10 @@ def _font_splits(cfg) -> tuple[dict, dict, dict]:
 
 
 def _cached_examples(cfg, workdir, per_script: dict, fonts_by_script=None):
-    """:func:`make_examples` of the training fonts, kept in ``workdir/examples.npz``.
+    """:func:`make_examples` of the training fonts, kept in ``workdir/examples-<hash>.npz``.
 
     They take most of a run's making time; a rerun (an interrupted fit, another
-    fit setting) with the same data settings reads them back.
+    fit setting) with the same data settings (the hash) reads them back.
     """
     keys = (
         "seed", "words_per_script", "rtl_words_per_script", "sketches", "min_height",
@@ -283,7 +273,7 @@ def train(cfg, workdir) -> dict:
     )  # fmt: skip
     t2 = time.perf_counter()
     pool = cfg.get("pool", "logit")
-    by_pool = scores(net, val_fonts, cfg.val_words_per_font, cfg, cfg.seed + 2, pool=reading.POOLS)
+    by_pool = scores(net, val_fonts, cfg.val_words_per_font, cfg, cfg.seed + 2, reading.POOLS)
     cut = {p: choose_threshold(v, cfg.max_false_rtl) for p, v in by_pool.items()}
     recall = {p: _recall(by_pool[p], cut[p]) for p in by_pool}
     if pool == "choose":

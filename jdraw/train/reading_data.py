@@ -84,8 +84,11 @@ def cursive_sample(split: str, rng: np.random.Generator, cfg) -> np.ndarray:
 def sample(script: str, font: str, rng: np.random.Generator, cfg) -> np.ndarray:
     """One random training drawing of ``script`` set in ``font``: ``uint8 [H, W]``.
 
-    ``script="cursive"``: :func:`cursive_sample`, ``font`` naming the word split.
+    ``script="cursive"``: :func:`cursive_sample`, ``font`` naming the word split;
+    ``script="sketch"``: :func:`sketch` (``font`` unused).
     """
+    if script == "sketch":
+        return sketch(rng)
     if script == "cursive":
         return cursive_sample(font, rng, cfg)
     words = [

@@ -86,6 +86,25 @@ def test_planning_imports_neither_scipy_ndimage_nor_skimage():
 FIT_TOL = 1e-9  # relative: the normal equations against lstsq on a well-posed cubic fit
 
 
+def test_ground_fit_on_the_grid_is_least_squares_over_the_kept_pixels(rng):
+    """The grid's sums of powers give the same fit as the explicit terms of every kept pixel."""
+    from jdraw.images.ink import _grid_fit, _poly_powers
+
+    sh, sw = 24, 37
+    powers = _poly_powers(3, sw, sh)
+    xp = np.linspace(-1, 1, sw)[:, None] ** np.arange(7)
+    yp = np.linspace(-1, 1, sh)[:, None] ** np.arange(7)
+    v = rng.random((sh, sw))
+    keep = rng.random((sh, sw)) > 0.3
+    terms = np.stack([np.outer(yp[:, j], xp[:, i]) for i, j in powers], -1)
+    want = np.linalg.lstsq(terms[keep], v[keep], rcond=None)[0]
+    np.testing.assert_allclose(_grid_fit(v, keep, xp, yp, powers), want, rtol=FIT_TOL, atol=FIT_TOL)
+    few = np.zeros((sh, sw), bool)
+    few[0, :5] = True  # five points, ten terms: lstsq's minimum-norm answer
+    want = np.linalg.lstsq(terms[few], v[few], rcond=None)[0]
+    np.testing.assert_allclose(_grid_fit(v, few, xp, yp, powers), want, rtol=FIT_TOL, atol=FIT_TOL)
+
+
 def test_ground_fit_is_least_squares_and_takes_tiny_images(rng):
     from jdraw.images.ink import _fit
 

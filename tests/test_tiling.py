@@ -119,6 +119,24 @@ def test_stitch_trims_retraces_and_fragments():
     np.testing.assert_array_equal(joined[0], line_px([0, 0], [11, 0]))
 
 
+def test_trim_retrace_cuts_ends_drawn_twice_and_keeps_a_closed_loop():
+    from jdraw.tiling.stitch import _trim_retrace
+
+    def trim(points, least=2):
+        return [tuple(q) for q in _trim_retrace(np.array(points, np.int64), least)]
+
+    line = [(x, 0) for x in range(4)]
+    assert trim(line + [(2, 0), (1, 0)]) == line  # overshoot and back: cut
+    assert trim(line + [(2, 0)]) == line + [(2, 0)]  # one pixel back: fewer than `least`
+    assert trim(line + [(2, 0)], least=1) == line
+    ring = [(0, 0), (1, 0), (1, 1), (0, 1), (0, 0)]
+    assert trim(ring) == ring  # a loop that ends on its first pixel keeps it
+    run = [(x, 0) for x in range(5)]
+    assert trim([(2, 0), (1, 0)] + run) == run  # started over what it draws next
+    assert trim([(2, 0), (1, 0)] + run + [(3, 0), (2, 0)]) == run  # both ends
+    assert trim([(5, 5)]) == [(5, 5)] and trim(np.zeros((0, 2))) == []
+
+
 def test_stitch_keeps_every_pixel():
     rng = np.random.default_rng(0)
     pieces = []

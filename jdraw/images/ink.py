@@ -69,10 +69,6 @@ def _poly_powers(degree: int, w: int, h: int) -> list[tuple[int, int]]:
     return [(i, j) for i in range(degree + 1) for j in range(degree + 1 - i) if i <= dx and j <= dy]
 
 
-def _poly_terms(x: np.ndarray, y: np.ndarray, powers: list[tuple[int, int]]) -> np.ndarray:
-    return np.stack([x**i * y**j for i, j in powers], -1)
-
-
 def _fit(t: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Least-squares coefficients of ``t @ coef ~ v`` for a few terms and many points.
 
@@ -90,6 +86,36 @@ def _fit(t: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.linalg.lstsq(t, v, rcond=None)[0]
 
 
+def _grid_fit(v: np.ndarray, keep: np.ndarray, xp: np.ndarray, yp: np.ndarray, powers):
+    """:func:`_fit` of the terms ``x**i * y**j`` to ``v [sh, sw]`` at the grid points ``keep``.
+
+    ``xp [sw, k]``, ``yp [sh, k]``: the powers 0..k-1 of each column's x and
+    each row's y. On a grid, every sum of the normal equations is a sum of
+    ``x**a * y**b`` over the kept points, and all of them come from two small
+    products (``yp.T @ keep @ xp``), so no ``[points, terms]`` matrix is made.
+    Too few kept points, or a singular system, go to :func:`_fit` on the terms.
+    """
+    k = keep.astype(np.float64)
+    if k.sum() >= 4 * len(powers):
+        m = np.einsum("yb,ya->ba", yp, np.einsum("yx,xa->ya", k, xp))
+        r = np.einsum("yb,ya->ba", yp, np.einsum("yx,xa->ya", k * v, xp))
+        i, j = np.array(powers).T
+        try:
+            return np.linalg.solve(m[j[:, None] + j, i[:, None] + i], r[j, i])
+        except np.linalg.LinAlgError:
+            pass
+    t = np.stack([np.outer(yp[:, j], xp[:, i]).ravel() for i, j in powers], -1)
+    return _fit(t[keep.ravel()], v.ravel()[keep.ravel()])
+
+
+def _grid_eval(coef: np.ndarray, powers, xp: np.ndarray, yp: np.ndarray) -> np.ndarray:
+    """``sum coef * x**i * y**j`` on the grid of ``xp [w, k]`` and ``yp [h, k]``: ``[h, w]``."""
+    c = np.zeros((yp.shape[1], xp.shape[1]))
+    for v, (i, j) in zip(coef, powers):
+        c[j, i] = v
+    return np.einsum("yb,ba,xa->yx", yp, c, xp, optimize=True)
+
+
 def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     """The ground's brightness under the ink: ``float32 [H, W]``.
 
@@ -102,19 +128,20 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     # Each axis shrinks on its own: a long thin strip keeps its short side, so a
     # line along it is not averaged into the ground.
     sw, sh = max(2, min(w, 128)), max(2, min(h, 128))
-    small = cv2.resize(gray, (sw, sh), interpolation=cv2.INTER_AREA).ravel().astype(np.float64)
-    ys, xs = np.mgrid[0:sh, 0:sw]
+    small = cv2.resize(gray, (sw, sh), interpolation=cv2.INTER_AREA).astype(np.float64)
     powers = _poly_powers(degree, w, h)
-    terms = _poly_terms(xs.ravel() / (sw - 1) * 2 - 1, ys.ravel() / (sh - 1) * 2 - 1, powers)
+    n = 2 * degree + 1  # the normal equations hold products of two terms
+    xp = (np.arange(sw) / (sw - 1) * 2 - 1)[:, None] ** np.arange(n)
+    yp = (np.arange(sh) / (sh - 1) * 2 - 1)[:, None] ** np.arange(n)
     sign = 1.0 if polarity == "light" else -1.0
     keep = np.ones(small.shape, bool)
     for _ in range(5):
-        coef = _fit(terms[keep], small[keep])
-        r = small - np.einsum("ni,i->n", terms, coef)
+        coef = _grid_fit(small, keep, xp, yp, powers)
+        r = small - _grid_eval(coef, powers, xp, yp)
         spread = 1.4826 * np.median(np.abs(r[keep] - np.median(r[keep]))) + 1e-4
-        ink = (sign * r > 2.0 * spread).reshape(sh, sw).astype(np.uint8)
-        new_keep = ~cv2.dilate(ink, np.ones((3, 3), np.uint8)).astype(bool).ravel()
-        if new_keep.sum() < terms.shape[1] * 4:
+        ink = (sign * r > 2.0 * spread).astype(np.uint8)
+        new_keep = ~cv2.dilate(ink, np.ones((3, 3), np.uint8)).astype(bool)
+        if new_keep.sum() < len(powers) * 4:
             break
         keep = new_keep
     # Evaluate on the full grid: pixel centres mapped to the small image's frame.

@@ -20,6 +20,12 @@ def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
     return d / max(np.hypot(*d), 1e-9)
 
 
+def _codes(path: np.ndarray) -> np.ndarray:
+    """One int64 per pixel of ``[n, 2]`` integer ``path``, equal for equal pixels."""
+    p = np.asarray(path, np.int64)
+    return (p[:, 0] << 32) + p[:, 1]
+
+
 def _trim_retrace(path: np.ndarray, least: int = 2) -> np.ndarray:
     """Cuts a path's ends where it doubles back over its own pixels.
 
@@ -28,24 +34,20 @@ def _trim_retrace(path: np.ndarray, least: int = 2) -> np.ndarray:
     start and again later) are cut when there are at least ``least`` of them,
     so a closed loop that ends on its first pixel keeps it.
     """
-    pix = [(int(x), int(y)) for x, y in path]
-    count: dict[tuple[int, int], int] = {}
-    for q in pix:
-        count[q] = count.get(q, 0) + 1
-    hi = len(pix)
-    left = dict(count)
-    while hi > 1 and left[pix[hi - 1]] > 1:
-        left[pix[hi - 1]] -= 1
-        hi -= 1
-    if len(pix) - hi < least:
-        hi = len(pix)
-    lo = 0
-    left = {q: 0 for q in count}
-    for q in pix[:hi]:
-        left[q] += 1
-    while lo < hi - 1 and left[pix[lo]] > 1:
-        left[pix[lo]] -= 1
-        lo += 1
+    n = len(path)
+    if n < 2:
+        return path
+    code = _codes(path)
+    first = np.zeros(n, bool)
+    first[np.unique(code, return_index=True)[1]] = True
+    # From the end, a pixel drawn before is cut; the last pixel drawn first stays.
+    hi = int(np.flatnonzero(first)[-1]) + 1
+    if n - hi < least:
+        hi = n
+    last = np.zeros(hi, bool)  # the last time each pixel of path[:hi] is drawn
+    last[hi - 1 - np.unique(code[:hi][::-1], return_index=True)[1]] = True
+    # From the start, a pixel drawn again later is cut, up to the first one that is not.
+    lo = min(int(np.argmax(last)), hi - 1)
     if lo < least:
         lo = 0
     return path[lo:hi]
@@ -145,7 +147,7 @@ def stitch(
     tile_of = [t for t, _ in pieces]
     dropped = _trim_fragments(paths, fragment)
     live = [i for i, p in enumerate(paths) if p is not None and len(p)]
-    size = {i: len({(int(x), int(y)) for x, y in paths[i]}) for i in live}
+    size = {i: len(np.unique(_codes(paths[i]))) for i in live}
 
     ends: dict[tuple[int, int], list[tuple[int, int]]] = {}
     inner: dict[tuple[int, int], set[int]] = {}

@@ -20,6 +20,7 @@ from flax import nnx
 from jax.sharding import NamedSharding
 from jax.sharding import PartitionSpec as P
 
+from jdraw import compile_cache
 from jdraw.data import kanji, mix
 from jdraw.model import checkpoints
 from jdraw.train import distributed, feed, records
@@ -94,7 +95,10 @@ def train(
     Run as several processes (:mod:`jdraw.train.distributed`), every process
     calls this; the batch is split over all their devices, Orbax saves each
     checkpoint once, and process 0 alone logs, validates and writes the bundle.
+    The step is compiled through jdraw's persistent cache (:mod:`jdraw.compile_cache`),
+    so a resumed run does not compile it again.
     """
+    compile_cache.enable()
     workdir = pathlib.Path(workdir)
     lead = distributed.is_lead()
     progress = progress and lead

@@ -39,6 +39,8 @@ compiling and validation add a few minutes. The tiny variant: 2 min 20 s and
 Result: README.md ("Beyond the paper") and docs/results.md.
 """
 
+import pathlib
+
 import ml_collections
 
 STYLES = dict(clean=0.4, cv2=0.15, aa=0.15, px3=0.15, px5=0.15)  # drawing mix (jdraw.data.variants)
@@ -142,15 +144,14 @@ def ranker() -> ml_collections.ConfigDict:
 
 def tiny(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     """Every stage on a budget of seconds: the pipeline's test, not a usable planner."""
-    for name in [n for n in ("local", "start") if n in c.stages]:
+    for name in ("local", "start"):
         s = c.stages[name]
         s.model.update(hidden=16, blocks=((4, 4), (4, 8), (8, 8), (8, 8)))
         s.train.update(windows=32, strokes=4, num_steps=4, log_every=2, checkpoint_every=2)
         s.eval.update(every=0, val_chars=0)
     c.stages.local.model.start_widths = (4, 8)
-    if "start" in c.stages:
-        c.stages.start.model.start_widths = (4, 8)
-        c.stages.start.train.update(global_batch=2, global_per_char=2)
+    c.stages.start.model.start_widths = (4, 8)
+    c.stages.start.train.update(global_batch=2, global_per_char=2)
     for name in ("splitter", "ranker"):
         c.stages[name].update(chars=4, chunk=4, steps=20, batch=32)
         if "extra" in c.stages[name]:
@@ -222,7 +223,8 @@ def tune(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     loc = c.stages.local
     loc.model.update(start_widths=(16, 32, 64), start_half_res=True)  # the default's start net
     loc.data.extra = dict(cursive=0.25, scribble=0.15, latin=0.05)
-    loc.train.update(init_from="jdraw/checkpoints/default", learning_rate=3e-4, num_steps=1200)
+    default = str(pathlib.Path(__file__).resolve().parents[1] / "jdraw" / "checkpoints" / "default")
+    loc.train.update(init_from=default, learning_rate=3e-4, num_steps=1200)
     c.stages.splitter.tracer = "stage:local"
     c.stages.ranker.tracer = "stage:local"
     del c.stages["start"]
@@ -249,11 +251,9 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         return tiny(scripts(c))
     if variant == "tune":
         return tune(c)
-    if variant == "tune_tiny":
-        return tiny(tune(c))
     if variant:
         raise ValueError(
             "configs/default.py: unknown variant "
-            f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_tiny or none)"
+            f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune or none)"
         )
     return c

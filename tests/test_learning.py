@@ -75,7 +75,7 @@ def test_global_only_learns_the_demonstrations(kanji_set, chars, tmp_path):
     cfg = _handful("global_only", 60)
     cfg.train.global_batch = 8
     # The default's narrower trunk (8-32 channels): the same training path at 2/5 of the
-    # paper trunk's time (117 s against 287 s on the 2-core CPU).
+    # paper trunk's time (108 s against 287 s on the 2-core CPU).
     cfg.model.blocks = GLOBAL_ONLY_BLOCKS
     cfg.data.chars = idx
     training.train(cfg, tmp_path, progress=False)

@@ -133,3 +133,18 @@ def test_scripts_variant_names_sets_that_load():
     for name in names:
         ks, pool = mix.load(name, progress=False)
         assert len(pool) > 0
+
+
+def test_tune_start_variant_trains_the_start_model_on_tunes_local_stage():
+    from configs import default
+
+    tune, c = default.get_config("tune").to_dict(), default.get_config("tune_start").to_dict()
+    assert c["stages"]["local"] == tune["stages"]["local"]  # reuses a tune run's local stage
+    st = c["stages"]["start"]
+    assert st["train"]["init_from"] == "stage:local" and not st["train"]["train_local"]
+    assert st["train"]["global_weight"] > 0 and "scribble" not in st["data"]["extra"]
+    assert c["stage_order"] == ("local", "start", "splitter", "ranker")
+    assert c["stages"]["splitter"]["tracer"] == c["stages"]["ranker"]["tracer"] == "stage:start"
+    for name in st["data"]["extra"]:
+        ks, pool = mix.load(name, progress=False)
+        assert len(pool) > 0

@@ -51,3 +51,23 @@ def test_render_word_inks_its_written_strokes():
         q = np.floor(p + 0.5).astype(int)
         assert ink[q[:, 1], q[:, 0]].all()
     assert len(written) == len(cursive.word_strokes("hello")) and words.pieces(ink) == 1
+
+
+def test_untraced_pieces_cut_a_stroke_where_it_goes_back_over_its_line():
+    # Out 40 px, back 30 px over the same line, then away at a right angle.
+    spur = np.array([[0, 0], [40, 0], [10, 0], [10, 40]], float)
+    # The first half of the gap after the turn is not yet on the earlier line.
+    assert words.retraced(spur).sum() == pytest.approx(30 - words.RETRACE_GAP / 2, abs=2)
+    assert words.untraced_pieces(spur) == 2
+    # Back over less than RETRACE_MIN: still one piece.
+    short = np.array([[0, 0], [40, 0], [30, 0], [30, 40]], float)
+    assert words.untraced_pieces(short) == 1
+    # A loop that crosses its own line at a right angle draws nothing twice.
+    loop = np.array([[0, 20], [40, 20], [40, 0], [20, 0], [20, 40]], float)
+    assert words.untraced_pieces(loop) == 1
+    # Two retraces: three pieces; the word's score reports them per written stroke.
+    two = np.array([[0, 0], [40, 0], [10, 0], [10, 40], [10, 10], [50, 10]], float)
+    assert words.untraced_pieces(two) == 3
+    ink = np.zeros((60, 60), bool)
+    r = words.score_word(ink, [spur + 5, short + 5], [spur + 5])
+    assert r["untraced_ratio"] == pytest.approx(1.5)

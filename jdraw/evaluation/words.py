@@ -18,7 +18,12 @@ pen (OpenCV ``polylines``, ``LINE_AA``, dark ink on white), planned with
   at the input's resolution;
 * ``order_all_pairs`` and ``direction``: as :func:`jdraw.evaluation.metrics.score`
   computes them from the same tolerant stroke IoU (each written stroke matched
-  to the planned stroke of highest IoU, at least 0.5).
+  to the planned stroke of highest IoU, at least 0.5);
+* ``untraced_ratio``: the writer's strokes cut wherever they go back over
+  :data:`RETRACE_MIN` pixels or more of their own line (:func:`untraced_pieces`),
+  per written stroke. A plan that never draws that much of a line twice needs at
+  least that many strokes; the planner goes over drawn ink for at most 8 moves
+  in a row (``jdraw.planner.loop.Limits``, up to 16 pixels).
 
 Acceptance (issue 24): stroke_ratio <= 1.15, strokes_per_piece <= 1.5, stroke_acc >= 0.85.
 """
@@ -42,6 +47,9 @@ PEN = 3  # pixels: OpenCV thickness of the anti-aliased marker
 PAD = 12  # pixels of paper around the ink
 TOL = 2  # pixels of tolerance in the stroke IoU
 MIN_HEIGHT, MAX_HEIGHT = 100, 300
+RETRACE_MIN = 16  # pixels of a line drawn again that count as a retrace
+RETRACE_TOL = 1.5  # pixels: a point this near an earlier part of its stroke is drawn again
+RETRACE_GAP = 8  # pixels along the stroke before a point that it is not compared with
 
 
 def word_height(word: str) -> int:
@@ -77,6 +85,35 @@ def pieces(ink: np.ndarray) -> int:
     return int(n) - 1
 
 
+def retraced(stroke: np.ndarray, tol: float = RETRACE_TOL, gap: int = RETRACE_GAP) -> np.ndarray:
+    """``bool [n]``, ``stroke`` resampled every pixel: whether each point is on its earlier line.
+
+    A point is on the earlier line when a point of the stroke at least ``gap``
+    pixels before it (along the stroke) lies within ``tol`` pixels.
+    """
+    p = np.asarray(stroke, float)
+    d = np.r_[0.0, np.cumsum(np.hypot(*np.diff(p, axis=0).T))]
+    t = np.arange(0.0, d[-1] + 1e-9, 1.0)
+    q = np.stack([np.interp(t, d, p[:, 0]), np.interp(t, d, p[:, 1])], 1)
+    i, j = np.tril_indices(len(q), -(gap + 1))  # j <= i - gap - 1
+    near = np.hypot(*(q[i] - q[j]).T) < tol
+    out = np.zeros(len(q), bool)
+    out[i[near]] = True
+    return out
+
+
+def untraced_pieces(stroke: np.ndarray, min_run: int = RETRACE_MIN) -> int:
+    """Pieces of ``stroke`` left when each stretch drawn again (``min_run`` px+) is cut out."""
+    again = retraced(stroke)
+    edges = np.flatnonzero(np.diff(np.r_[0, again.astype(np.int8), 0]))
+    cut = np.zeros(len(again), bool)
+    for a, b in zip(edges[::2], edges[1::2]):
+        if b - a >= min_run:
+            cut[a:b] = True
+    keep = ~cut
+    return int(keep[0] + np.sum(keep[1:] & ~keep[:-1]))
+
+
 def stroke_images(strokes, shape: tuple[int, int]) -> np.ndarray:
     """``bool [S, H, W]``: each ``[n, 2]`` (x, y) stroke as a 1-pixel line."""
     if not len(strokes):
@@ -102,6 +139,7 @@ def score_word(ink: np.ndarray, written, drawn, tol: int = TOL) -> dict:
         "stroke_ratio": len(drawn) / max(len(written), 1),
         "strokes_per_piece": len(drawn) / max(n_pieces, 1),
         "written_per_piece": len(written) / max(n_pieces, 1),
+        "untraced_ratio": sum(untraced_pieces(p) for p in written) / max(len(written), 1),
         "stroke_acc": metrics.stroke_accuracy(t_img, d_img, tol),
     }
     if len(t_img) and len(d_img):
@@ -158,6 +196,7 @@ def evaluate_words(
         "stroke_acc": mean("stroke_acc"),
         "order_all_pairs": mean("order_all_pairs"),
         "direction": mean("direction"),
+        "untraced_ratio": mean("untraced_ratio"),
         "seconds": time.time() - t0,
         "words": per,
     }
@@ -178,7 +217,9 @@ def summary(res: dict) -> str:
         f"{res['stroke_ratio']:.3f} (total {res['stroke_ratio_total']:.3f}), strokes per piece "
         f"{res['strokes_per_piece']:.2f} (written {res['written_per_piece']:.2f}), stroke acc "
         f"{res['stroke_acc']:.4f} (tol {TOL} px), order all pairs {res['order_all_pairs']:.4f}, "
-        f"direction {res['direction']:.4f}, {res['seconds']:.0f} s"
+        f"direction {res['direction']:.4f}; the writer's strokes cut at their retraces "
+        f"({RETRACE_MIN} px or more): {res['untraced_ratio']:.3f} per written stroke, "
+        f"{res['seconds']:.0f} s"
     )
 
 

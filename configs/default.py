@@ -254,6 +254,32 @@ def tune_start(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     return c
 
 
+def retrace(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """The default's tracer and ranker, with a splitter that may join ends 32 px apart.
+
+    A cursive writer goes back over the line (an n's first stem, an a's oval:
+    jdraw.data.cursive); the tracer lifts at the dead end instead and starts
+    again where the line turned back, up to some 30 px away along the ink. The
+    default's joiner links ends at most 8 moves apart through the ink
+    (``reach``); this one may link them 32 moves apart, back over the drawn line,
+    and learns when from KanjiVG's 9,000 characters plus 1,500 Latin and 2,000
+    cursive ones (as ``mix``). The local and start stages are the default's,
+    copied in before the run:
+
+      mkdir -p runs/retrace/local runs/retrace/start
+      cp -r jdraw/checkpoints/default runs/retrace/local/bundle
+      cp -r jdraw/checkpoints/default runs/retrace/start/bundle
+      python train.py --config configs/default.py:retrace --workdir runs/retrace
+
+    The ranker stage is the default's config, so it traces and fits the
+    default's ranker again. Results: docs/scripts.md.
+    """
+    c.name = "default_retrace"
+    c.stages.splitter.reach = 32
+    c.stages.splitter.extra = dict(latin=1500, cursive=2000)
+    return c
+
+
 def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     c = ml_collections.ConfigDict()
     c.name = "default"
@@ -276,9 +302,12 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         return tune(c)
     if variant == "tune_start":
         return tune_start(c)
+    if variant == "retrace":
+        return retrace(c)
     if variant:
         raise ValueError(
             "configs/default.py: unknown variant "
-            f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_start or none)"
+            f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_start, "
+            "retrace or none)"
         )
     return c

@@ -148,3 +148,18 @@ def test_tune_start_variant_trains_the_start_model_on_tunes_local_stage():
     for name in st["data"]["extra"]:
         ks, pool = mix.load(name, progress=False)
         assert len(pool) > 0
+
+
+def test_retrace_variant_changes_only_the_splitters_reach_and_sets():
+    from configs import default
+
+    base, c = default.get_config().to_dict(), default.get_config("retrace").to_dict()
+    for name in ("local", "start", "ranker"):
+        assert c["stages"][name] == base["stages"][name]
+    sp = c["stages"]["splitter"]
+    assert sp["reach"] == 32 > base["stages"]["splitter"]["reach"]
+    same = {k: v for k, v in sp.items() if k not in ("reach", "extra")}
+    assert same == {k: v for k, v in base["stages"]["splitter"].items() if k != "reach"}
+    for name in sp["extra"]:
+        ks, pool = mix.load(name, progress=False)
+        assert len(pool) > 0

@@ -102,6 +102,30 @@ def test_ends_either_side_of_a_crossing_join_through_the_ink():
     assert x.shape == (1, splits.CORNER_FEATURES)
 
 
+def test_a_stroke_that_stops_at_a_dead_end_joins_back_along_its_own_line():
+    """A writer goes down a curved stem and back up it; the tracer lifts at the tip and
+    starts again where the line turned back. With reach, the join retraces the curve."""
+    t = np.linspace(0.0, np.pi / 2, 60)
+    arc = np.stack([30 + 30 * np.cos(t), 20 + 30 * np.sin(t)], 1)  # (60, 20) to (30, 50)
+    a = np.rint(arc)  # down the stem to its tip at (30, 50)
+    j = int(np.argmax(np.hypot(*(a - a[-1]).T) < 22))  # where the line turns back
+    b = a[j] + np.arange(21)[:, None] * [1.0, 1.0]  # and leaves it, outwards
+    ink = geometry.render_strokes([a, b])
+    assert joins.end_pairs([a, b], ink) == []  # too far for the default reach
+    links = dict(joins.end_links([a, b], ink, reach=32))  # the stem's top is a candidate too
+    link = links[(0, True, 1, False)]
+    assert len(link) >= 15  # about 22 px back up the curve
+    np.testing.assert_array_equal(link, joins.bridge(a[-1], b[0], ink, reach=32))
+    assert ink[link[:, 1].astype(int), link[:, 0].astype(int)].all()  # back along the drawn line
+    (one,) = joins.join_pairs([a, b], [(0, True, 1, False)], ink, reach=32)
+    q = np.rint(one).astype(int)
+    assert ink[q[:, 1], q[:, 0]].all() and np.abs(np.diff(one, axis=0)).max() <= 2
+    assert tuple(one[0]) == tuple(a[0]) and tuple(one[-1]) == tuple(b[-1])
+    (straight,) = joins.join_pairs([a, b], [(0, True, 1, False)], ink)  # reach 8: a straight link
+    q = np.rint(straight).astype(int)
+    assert not ink[q[:, 1], q[:, 0]].all()
+
+
 def test_edit_plan_follows_the_nets_and_inks_the_same_pixels():
     ell, far = _ell(), _line(60, 10, 90, 10)
     a, b = _line(10, 85, 30, 85), _line(31, 85, 60, 85)

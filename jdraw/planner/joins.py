@@ -198,22 +198,22 @@ JOIN_GEOMETRY = 23  # of a pair of ends (join_features)
 REACH = 8  # pixels (Chebyshev, and moves along the ink) between ends linked through ink
 
 
-def _ink_path(ink: np.ndarray, a, b, moves: int) -> np.ndarray | None:
-    """The shortest 8-connected path of ink pixels from ``a`` to ``b`` (both
-    included), if one of at most ``moves`` moves exists; breadth first."""
+def _pixel(p) -> tuple[int, int]:
+    return tuple(int(v) for v in np.rint(p))
+
+
+def _ink_tree(ink: np.ndarray, a, moves: int, stop=None) -> dict:
+    """Breadth-first tree of 8-connected ink pixels within ``moves`` moves of ``a``:
+    ``{pixel: the pixel before it}``; it stops early once it reaches ``stop``."""
     h, w = ink.shape
-    a = tuple(int(v) for v in np.rint(a))
-    b = tuple(int(v) for v in np.rint(b))
+    a = _pixel(a)
     prev = {a: a}
     todo = deque([(a, 0)])
     while todo:
         c, n = todo.popleft()
-        if c == b:
-            out = [c]
-            while out[-1] != a:
-                out.append(prev[out[-1]])
-            return np.asarray(out[::-1], np.float64)
-        if n == moves:
+        if c == stop or n == moves:
+            if c == stop:
+                break
             continue
         for dx in (-1, 0, 1):
             for dy in (-1, 0, 1):
@@ -221,7 +221,24 @@ def _ink_path(ink: np.ndarray, a, b, moves: int) -> np.ndarray | None:
                 if q not in prev and 0 <= q[0] < w and 0 <= q[1] < h and ink[q[1], q[0]]:
                     prev[q] = c
                     todo.append((q, n + 1))
-    return None
+    return prev
+
+
+def _tree_path(prev: dict, a, b) -> np.ndarray | None:
+    """The path from ``a`` to ``b`` (both included) in the tree ``prev``, if it has ``b``."""
+    a, b = _pixel(a), _pixel(b)
+    if b not in prev:
+        return None
+    out = [b]
+    while out[-1] != a:
+        out.append(prev[out[-1]])
+    return np.asarray(out[::-1], np.float64)
+
+
+def _ink_path(ink: np.ndarray, a, b, moves: int) -> np.ndarray | None:
+    """The shortest 8-connected path of ink pixels from ``a`` to ``b`` (both
+    included), if one of at most ``moves`` moves exists; breadth first."""
+    return _tree_path(_ink_tree(ink, a, moves, stop=_pixel(b)), a, b)
 
 
 def bridge(a, b, ink=None, gap: int = GAP, reach: int = REACH) -> np.ndarray | None:
@@ -272,13 +289,21 @@ def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH) -> list:
         if len(p) >= 2
         for e in (False, True)
     ]
+    ink = None if ink is None else np.asarray(ink, bool)
     out = []
     for a in range(len(ends)):
+        tree = None  # one breadth-first search from this end serves every pair of it
         for b in range(a + 1, len(ends)):
             (i, ie, pa), (j, je, pb) = ends[a], ends[b]
-            if i == j or np.abs(pa - pb).max() > max(gap, reach if ink is not None else 0):
+            far = np.abs(pa - pb).max()
+            if i == j or far > max(gap, reach if ink is not None else 0):
                 continue
-            link = bridge(pa, pb, ink, gap, reach)
+            if far <= gap:
+                link = bridge(pa, pb, ink, gap, reach)
+            else:  # as bridge(): the shortest path through the ink of at most reach moves
+                tree = _ink_tree(ink, pa, reach) if tree is None else tree
+                path = _tree_path(tree, pa, pb)
+                link = None if path is None else path[1:-1]
             if link is not None:
                 out.append(((i, ie, j, je), link))
     return out
@@ -344,14 +369,14 @@ def end_owner(points, at_end: bool, refs, reach: float = 8.0, skip: float = 1.0)
     return int(np.bincount(_owners(q[sel], refs)).argmax())
 
 
-def join_pairs(strokes, pairs, ink=None) -> list[np.ndarray]:
+def join_pairs(strokes, pairs, ink=None, reach: int = REACH) -> list[np.ndarray]:
     """Strokes with the chosen end pairs joined, each end used once, no loops.
 
     ``pairs`` are taken in the order given (best first); one that would
     reuse an end or close a ring of strokes is skipped. A chain is drawn from
     its first stroke's free end; a stroke turned round inks the same pixels
     (:func:`jdraw.planner.ranker.reverse`). Two ends are linked by their
-    :func:`bridge` over ``ink`` (straight if there is none).
+    :func:`bridge` over ``ink`` (straight if there is none), up to ``reach``.
     """
     S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
     parent = list(range(len(S)))
@@ -379,7 +404,7 @@ def join_pairs(strokes, pairs, ink=None) -> list[np.ndarray]:
             seen.add(cur)
             p = S[cur] if not enter else reverse(S[cur])  # from the end entered
             if parts:
-                between = bridge(parts[-1][-1], p[0], ink)
+                between = bridge(parts[-1][-1], p[0], ink, reach=reach)
                 parts.append(_link(parts[-1][-1], p[0]) if between is None else between)
             parts.append(p)
             nxt = link.get((cur, not enter))  # leave by the other end

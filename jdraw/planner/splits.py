@@ -202,7 +202,7 @@ def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: 
         z = logit[at : at + len(pairs)]
         at += len(pairs)
         chosen = [pairs[k] for k in np.argsort(-z) if z[k] > threshold]
-        out.append(join_pairs(strokes, chosen, ink) if chosen else list(strokes))
+        out.append(join_pairs(strokes, chosen, ink, splitter.reach) if chosen else list(strokes))
     return out
 
 

@@ -272,7 +272,10 @@ def retrace(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
       python train.py --config configs/default.py:retrace --workdir runs/retrace
 
     The ranker stage is the default's config, so it traces and fits the
-    default's ranker again. Results: docs/scripts.md.
+    default's ranker again. Not the default: with the default's ranker, 40 cursive
+    val words go from 3.39 to 2.50 drawn strokes per written one, but KanjiVG's order
+    over all pairs falls from 0.9582 to 0.9521 and Latin letters lose order and
+    direction. Results: docs/scripts.md.
     """
     c.name = "default_retrace"
     c.stages.splitter.reach = 32

@@ -202,64 +202,50 @@ def _pixel(p) -> tuple[int, int]:
     return tuple(int(v) for v in np.rint(p))
 
 
-def _ink_tree(ink: np.ndarray, a, moves: int, stop=None) -> dict:
+def _ink_tree(ink: np.ndarray, a, moves: int) -> dict:
     """Breadth-first tree of 8-connected ink pixels within ``moves`` moves of ``a``:
-    ``{pixel: the pixel before it}``; it stops early once it reaches ``stop``."""
+    ``{pixel: the pixel before it}``, so each path in it is a shortest one."""
     h, w = ink.shape
     a = _pixel(a)
     prev = {a: a}
     todo = deque([(a, 0)])
     while todo:
         c, n = todo.popleft()
-        if c == stop or n == moves:
-            if c == stop:
-                break
+        if n == moves:
             continue
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                q = (c[0] + dx, c[1] + dy)
-                if q not in prev and 0 <= q[0] < w and 0 <= q[1] < h and ink[q[1], q[0]]:
-                    prev[q] = c
-                    todo.append((q, n + 1))
+        for q in ((c[0] + dx, c[1] + dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1)):
+            if q not in prev and 0 <= q[0] < w and 0 <= q[1] < h and ink[q[1], q[0]]:
+                prev[q] = c
+                todo.append((q, n + 1))
     return prev
 
 
-def _tree_path(prev: dict, a, b) -> np.ndarray | None:
-    """The path from ``a`` to ``b`` (both included) in the tree ``prev``, if it has ``b``."""
+def _between(prev: dict, a, b) -> np.ndarray | None:
+    """The points strictly between ``a`` and ``b`` on the tree ``prev``'s path, if it has ``b``."""
     a, b = _pixel(a), _pixel(b)
     if b not in prev:
         return None
     out = [b]
     while out[-1] != a:
         out.append(prev[out[-1]])
-    return np.asarray(out[::-1], np.float64)
-
-
-def _ink_path(ink: np.ndarray, a, b, moves: int) -> np.ndarray | None:
-    """The shortest 8-connected path of ink pixels from ``a`` to ``b`` (both
-    included), if one of at most ``moves`` moves exists; breadth first."""
-    return _tree_path(_ink_tree(ink, a, moves, stop=_pixel(b)), a, b)
+    return np.asarray(out[-2:0:-1], np.float64).reshape(-1, 2)
 
 
 def bridge(a, b, ink=None, gap: int = GAP, reach: int = REACH) -> np.ndarray | None:
     """Points strictly between two ends that a join draws, or ``None`` if they cannot join.
 
-    Ends at most ``gap`` pixels apart (Chebyshev) are linked straight, if the
-    pixels between them are ink (any, without ``ink``). Ends up to ``reach``
-    apart are linked by the shortest path through ``ink`` of at most
-    ``reach`` one-pixel moves, often over a line drawn already; without
-    ``ink`` they are not linked.
+    Ends at most ``gap`` pixels apart (Chebyshev) are linked straight, if the pixels
+    between are ink (any, without ``ink``); ends up to ``reach`` apart by the shortest
+    path through ``ink`` of at most ``reach`` moves, often over a line drawn already.
     """
-    a = np.asarray(a, np.float64)
-    b = np.asarray(b, np.float64)
+    a, b = np.asarray(a, np.float64), np.asarray(b, np.float64)
     far = np.abs(a - b).max()
     if far <= gap:
         link = _link(a, b)
         return link if _on_ink(np.concatenate([a[None], link, b[None]]), ink) else None
     if ink is None or far > reach:
         return None
-    path = _ink_path(np.asarray(ink, bool), a, b, reach)
-    return None if path is None else path[1:-1]
+    return _between(_ink_tree(np.asarray(ink, bool), a, reach), a, b)
 
 
 def _end(p: np.ndarray, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -302,8 +288,7 @@ def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH) -> list:
                 link = bridge(pa, pb, ink, gap, reach)
             else:  # as bridge(): the shortest path through the ink of at most reach moves
                 tree = _ink_tree(ink, pa, reach) if tree is None else tree
-                path = _tree_path(tree, pa, pb)
-                link = None if path is None else path[1:-1]
+                link = _between(tree, pa, pb)
             if link is not None:
                 out.append(((i, ie, j, je), link))
     return out

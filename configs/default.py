@@ -19,21 +19,30 @@ Writes runs/default/bundle, laid out as jdraw/checkpoints/default, which
    64 channels), trained beside the local model of stage 1, which does not move:
    1,500 steps of 32 stroke starts.
 3. ``splitter``: the tracer (stage 2's bundle) plans 9,000 training characters
-   drawn the same five ways; two small MLPs learn where a drawn stroke should
-   be cut and which stroke ends are one stroke, also ends up to 8 px apart
-   linked through the ink (jdraw.train.splitter, jdraw.planner.splits).
+   drawn the same five ways, 1,500 Latin letters and 2,000 cursive fragments
+   (jdraw.data.mix); two small MLPs, each corner and end pair also given the
+   drawing's context, learn where a drawn stroke should be cut and which
+   stroke ends are one stroke, also ends up to 8 px apart linked through the
+   ink (jdraw.train.splitter, jdraw.planner.splits).
 4. ``ranker``: the tracer plans 600 more characters (and 2,500 give KanjiVG's
-   own strokes); the ranker learns KanjiVG's order and direction of its strokes
-   (jdraw.train.ranker, jdraw.planner.ranker).
+   own strokes), 2,000 Latin letters and 400 cursive fragments
+   (jdraw.data.mix); the ranker (128 wide, each pair and stroke also given the
+   drawing's context) learns the writers' order and direction of its strokes
+   (jdraw.train.ranker, jdraw.planner.ranker). Made alone by the
+   ``ranker_only`` variant, with stages 1 and 2 as bundled.
 
 A string ``"stage:NAME"`` in a stage's config is ``WORKDIR/NAME/bundle``.
-These are the configs the bundled default was trained with, flattened (they
-were configs/lean.py, lean_start.py, splitter_reach.py and ranker_lean.py; the
-bundle's json files keep them, and tests/test_pipeline.py compares them).
+These are the configs the bundled default was trained with, flattened (stages
+1 and 2 were configs/lean.py and lean_start.py; stages 3 and 4 were made on
+2026-12-04 with stages 1 and 2 as bundled (copied in as ``retrace`` says): the
+splitter by ``python train.py --config configs/default.py:context --workdir runs/ctx8
+--config.stages.splitter.reach=8``, whose splitter stage is this one, the ranker by
+``ranker_only``; the bundle's json files keep the configs, and
+tests/test_pipeline.py compares them with these).
 
-Wall time on the 2-core CPU: about 51 min, the sum of the stages' recorded
-times (training loops 2,105 s and 298 s, tracing and fits about 586 s and
-68 s; the bundle's json files), not one fresh run of this command; loading,
+Wall time on the 2-core CPU: about 57 min, the sum of the stages' recorded
+times (training loops 2,105 s and 298 s, tracing and fits 868 s and 137 s; the
+bundle's json files), not one fresh run of this command; loading,
 compiling and validation add a few minutes. The tiny variant: 2 min 20 s and
 2 min 39 s in two runs on the CPU shared with other jobs; its bundle plans, badly.
 Result: README.md ("Beyond the paper") and docs/results.md.
@@ -115,7 +124,9 @@ def splitter() -> ml_collections.ConfigDict:
     c.chunk = 100
     c.augment = 1.0
     c.styles = dict(STYLES)
+    c.extra = dict(latin=1500, cursive=2000)  # jdraw.data.mix: school letters, cursive
     c.patches = False  # the nets see each corner's and join's geometry only
+    c.context = True  # ... and the drawing's context (jdraw.planner.stroke_tokens.context)
     c.reach = 8  # pixels: ends linked through the ink (jdraw.planner.joins.REACH)
     c.hidden = 64
     c.steps = 3000
@@ -133,13 +144,56 @@ def ranker() -> ml_collections.ConfigDict:
     c.out = "stage:ranker"
     c.chars = 600
     c.demo_chars = 2500
+    c.extra = dict(latin=2000, cursive=400)  # jdraw.data.mix: school letters, cursive
     c.chunk = 100
     c.augment = 1.0
     c.styles = dict(STYLES)
+    c.hidden = 128
+    c.context = True  # every pair and stroke also sees the drawing's context
     c.steps = 4000
     c.batch = 512
     c.learning_rate = 3e-3
     return c
+
+
+def ranker_only() -> ml_collections.ConfigDict:
+    """The ranker stage alone, traced by the bundled default's own models.
+
+      python train.py --config configs/default.py:ranker_only --workdir runs/default_ranker
+      cp runs/default_ranker/out/ranker.npz runs/default_ranker/out/ranker.json \\
+          jdraw/checkpoints/default/
+
+    made the bundled default's ranker (the tracer plans with ``order="model"`` and
+    no splitter, so only its local and start models, stage 2's, are used).
+    """
+    c = ranker()
+    c.tracer = str(
+        pathlib.Path(__file__).resolve().parents[1] / "jdraw" / "checkpoints" / "default"
+    )
+    c.out = "runs/default_ranker/out"
+    return c
+
+
+def splitter_before(s: ml_collections.ConfigDict, extra=None) -> ml_collections.ConfigDict:
+    """The splitter stage as it was before 2026-12-04 (no context, ``extra`` sets only),
+    with which the variants below were measured."""
+    s.context = False
+    if extra:
+        s.extra = dict(extra)
+    else:
+        del s["extra"]
+    return s
+
+
+def ranker_before(r: ml_collections.ConfigDict, extra=None) -> ml_collections.ConfigDict:
+    """The ranker stage as it was before 2026-12-04 (64 wide, no context, ``extra`` sets
+    only), with which the variants below were measured."""
+    r.update(hidden=64, context=False)
+    if extra:
+        r.extra = dict(extra)
+    else:
+        del r["extra"]
+    return r
 
 
 def tiny(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
@@ -172,8 +226,8 @@ def mix(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     accuracy 0.9870 -> 0.9865 (results/beyond_mix9k.json).
     """
     c.name = "default_mix"
-    c.stages.splitter.extra = dict(latin=1500, cursive=2000)
-    c.stages.ranker.extra = dict(latin=400, cursive=400)
+    splitter_before(c.stages.splitter, dict(latin=1500, cursive=2000))
+    ranker_before(c.stages.ranker, dict(latin=400, cursive=400))
     c.stages.ranker.tracer_split = "stage:splitter"
     return c
 
@@ -197,8 +251,8 @@ def scripts(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     c.name = "default_scripts"
     c.stages.local.data.extra = dict(cursive=0.2, scribble=0.12, latin=0.08)
     c.stages.start.data.extra = dict(cursive=0.2, latin=0.1)
-    c.stages.splitter.extra = dict(latin=1500, cursive=2000)
-    c.stages.ranker.extra = dict(latin=400, cursive=400)
+    splitter_before(c.stages.splitter, dict(latin=1500, cursive=2000))
+    ranker_before(c.stages.ranker, dict(latin=400, cursive=400))
     c.stages.ranker.tracer_split = "stage:splitter"
     return c
 
@@ -227,6 +281,8 @@ def tune(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     loc.train.update(init_from=default, learning_rate=3e-4, num_steps=1200)
     c.stages.splitter.tracer = "stage:local"
     c.stages.ranker.tracer = "stage:local"
+    splitter_before(c.stages.splitter)
+    ranker_before(c.stages.ranker)
     del c.stages["start"]
     return c
 
@@ -271,15 +327,37 @@ def retrace(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
       cp -r jdraw/checkpoints/default runs/retrace/start/bundle
       python train.py --config configs/default.py:retrace --workdir runs/retrace
 
-    The ranker stage is the default's config, so it traces and fits the
-    default's ranker again. Not the default: with the default's ranker, 40 cursive
-    val words go from 3.39 to 2.50 drawn strokes per written one, but KanjiVG's order
+    The ranker stage is the default's config as it was before 2026-12-04
+    (``ranker_before``), so it traces and fits that ranker again. Not the
+    default: with that ranker, 40 cursive val words go from 3.39 to 2.50 drawn
+    strokes per written one, but KanjiVG's order
     over all pairs falls from 0.9582 to 0.9521 and Latin letters lose order and
     direction. Results: docs/scripts.md.
     """
     c.name = "default_retrace"
+    ranker_before(c.stages.ranker)
+    splitter_before(c.stages.splitter, dict(latin=1500, cursive=2000))
     c.stages.splitter.reach = 32
-    c.stages.splitter.extra = dict(latin=1500, cursive=2000)
+    return c
+
+
+def context(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """``retrace``'s splitter reading the drawing's context, the ranker traced with it.
+
+    Every corner, end pair and stroke pair the splitter and ranker score also
+    carries a dozen numbers about the whole drawing (how many strokes, how long,
+    how much they turn, how many close on themselves, how often they cross:
+    jdraw.planner.stroke_tokens.context), so one net may learn that a corner in
+    a drawing of few curved strokes is not cut as a kanji's is. The ranker is
+    the default's config (it reads the context too) but orders the strokes this
+    splitter leaves. The local and start stages are the default's, copied in as
+    ``retrace`` says.
+    """
+    c = retrace(c)
+    c.name = "default_context"
+    c.stages.splitter.context = True
+    c.stages.ranker = ranker()  # today's default ranker config
+    c.stages.ranker.tracer_split = "stage:splitter"
     return c
 
 
@@ -307,10 +385,16 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         return tune_start(c)
     if variant == "retrace":
         return retrace(c)
+    if variant == "ranker_only":
+        return ranker_only()
+    if variant == "context":
+        return context(c)
+    if variant == "context_tiny":
+        return tiny(context(c))
     if variant:
         raise ValueError(
             "configs/default.py: unknown variant "
             f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_start, "
-            "retrace or none)"
+            "retrace, context, context_tiny, ranker_only or none)"
         )
     return c

@@ -39,8 +39,10 @@ def test_bundled_checkpoints_are_present_and_trained():
     sp = api.load_splitter(None)  # and cuts and joins strokes with its splitter
     assert sp is not None
     meta = json.loads((bundle.DEFAULT_BUNDLE / "splitter.json").read_text())["provenance"]
-    assert meta["config"]["name"] == "splitter_reach" and meta["corners"] >= 10_000
+    assert meta["config"]["name"] == "default/splitter" and meta["corners"] >= 10_000
     assert sp.reach == meta["config"]["reach"] > 0  # it joins ends through the ink
+    assert sp.context and set(meta["config"]["extra"]) == {"latin", "cursive"}  # other scripts
+    assert api.load_ranker(None).context and api.load_ranker(None).hidden == 128
 
 
 def test_a_first_format_splitter_still_loads(tmp_path):

@@ -130,3 +130,84 @@ def test_characters_ordered_together_as_one_at_a_time(rng):
     assert together == [ranker.order_strokes(model, c) for c in chars]
     assert sum(len(c) ** 2 for c in chars) > ranker.CHUNK
     assert any(any(f) for _, f in together) and any(o != sorted(o) for o, _ in together)
+
+
+def _counted_bars(rng, n):
+    """``n`` bars and their reference order: 3 bars go top to bottom, 5 bottom to top."""
+    ref = sorted(_bars(rng, n), key=lambda s: s[0, 1], reverse=n == 5)
+    return ref
+
+
+def _fit(rng, context):
+    parts = []
+    for k in range(80):
+        ref = _counted_bars(rng, 3 if k % 2 else 5)
+        imgs = np.stack([geometry.render_strokes([s]) for s in ref])
+        perm = rng.permutation(len(ref))
+        parts.append(ranker_train.examples([ref[p] for p in perm], imgs, ref))
+    data = tuple(np.concatenate([p[i] for p in parts]) for i in range(7))
+    return ranker_train.train_ranker(data, steps=400, batch=128, context=context)[0]
+
+
+def _right(model, rng):
+    right = 0
+    for k in range(20):
+        ref = _counted_bars(rng, 3 if k % 2 else 5)
+        shown = [ref[p] for p in rng.permutation(len(ref))]
+        out = ranker.reorder(_plan_of([shown]), "ranker", model).strokes[0]
+        right += [s[0][1] for s in out] == [s[0][1] for s in ref]
+    return right
+
+
+def test_a_ranker_with_context_learns_rules_that_depend_on_the_whole_drawing(rng):
+    # The rule depends on how many bars there are, which no single stroke or pair shows.
+    with_ctx, without = _right(_fit(rng, True), rng), _right(_fit(rng, False), rng)
+    assert with_ctx >= 18, (with_ctx, without)
+    assert without <= 15, (with_ctx, without)
+
+
+def test_context_does_not_depend_on_which_way_strokes_are_drawn(rng):
+    from jdraw.data import demos as demo
+    from jdraw.data import kanji
+
+    ks = kanji.load(progress=False)
+    d = demo.sample(ks, int(kanji.split_indices(ks, "test")[3]))
+    flip = rng.random(len(d.strokes)) < 0.5
+    tk = ranker.tokens(d.strokes)
+    c = ranker.drawing_context(tk)
+    np.testing.assert_array_equal(c, ranker.drawing_context(ranker.flipped(tk, flip)))
+    t = np.linspace(0, 2 * np.pi, 60)
+    circle = np.stack([50 + 20 * np.cos(t), 50 + 20 * np.sin(t)], 1)
+    ring = ranker.drawing_context(ranker.tokens([circle]))
+    assert ring[7] == 1.0 and ring[5] > 0.7  # one closed stroke that turns about once
+    assert c[7] == 0.0 and not np.array_equal(c, ring)
+
+
+def test_a_ranker_with_context_keeps_it_through_its_bundle(rng, tmp_path):
+    model = ranker.Ranker(context=True, rngs=nnx.Rngs(3))
+    ranker.save(model, tmp_path)
+    back = ranker.load(tmp_path)
+    assert back.context
+    chars = [_bars(rng, 4), _bars(rng, 6)]
+    assert ranker.order_many(back, chars) == ranker.order_many(model, chars)
+    import json
+
+    old = tmp_path / "old"  # a bundle from before the context: no "context" in its json
+    ranker.save(ranker.Ranker(rngs=nnx.Rngs(3)), old)
+    meta = json.loads((old / "ranker.json").read_text())
+    del meta["context"]
+    (old / "ranker.json").write_text(json.dumps(meta))
+    assert not ranker.load(old).context
+    assert ranker.order_many(ranker.load(old), chars)
+
+
+def test_shares_fill_each_batch_by_set_whatever_its_size():
+    groups = np.array(["kanji"] * 900 + ["latin"] * 100)
+    p = ranker_train.row_weights(groups, {"kanji": 0.5, "latin": 0.5, "cursive": 0.2})
+    assert np.isclose(p.sum(), 1.0)
+    np.testing.assert_allclose([p[:900].sum(), p[900:].sum()], [0.5, 0.5])  # no cursive rows
+    assert np.allclose(p[:900], p[0]) and p[900] == 9 * p[0]
+    import pytest
+
+    with pytest.raises(ValueError, match="no rows"):
+        ranker_train.row_weights(groups, {"cursive": 1.0})

@@ -154,12 +154,26 @@ def test_retrace_variant_changes_only_the_splitters_reach_and_sets():
     from configs import default
 
     base, c = default.get_config().to_dict(), default.get_config("retrace").to_dict()
-    for name in ("local", "start", "ranker"):
+    for name in ("local", "start"):
         assert c["stages"][name] == base["stages"][name]
+    before = default.ranker_before(default.ranker()).to_dict()  # as it was measured
+    assert c["stages"]["ranker"] == before and before["hidden"] == 64 and "extra" not in before
     sp = c["stages"]["splitter"]
     assert sp["reach"] == 32 > base["stages"]["splitter"]["reach"]
+    before = default.splitter_before(default.splitter()).to_dict()  # as it was measured
     same = {k: v for k, v in sp.items() if k not in ("reach", "extra")}
-    assert same == {k: v for k, v in base["stages"]["splitter"].items() if k != "reach"}
+    assert same == {k: v for k, v in before.items() if k != "reach"} and not sp["context"]
     for name in sp["extra"]:
         ks, pool = mix.load(name, progress=False)
         assert len(pool) > 0
+
+
+def test_context_variant_is_retraces_splitter_reading_the_context_and_the_default_ranker():
+    from configs import default
+
+    base, c = default.get_config().to_dict(), default.get_config("context").to_dict()
+    retrace = default.get_config("retrace").to_dict()
+    assert c["stages"]["splitter"] == {**retrace["stages"]["splitter"], "context": True}
+    assert c["stages"]["ranker"] == {**base["stages"]["ranker"], "tracer_split": "stage:splitter"}
+    assert base["stages"]["ranker"]["context"] and base["stages"]["splitter"]["context"]
+    assert base["stages"]["splitter"]["reach"] == 8

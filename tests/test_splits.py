@@ -7,6 +7,7 @@ from flax import nnx
 from jdraw import geometry
 from jdraw.planner import corners as corner_geometry
 from jdraw.planner import joins, splits
+from jdraw.planner.stroke_tokens import CONTEXT_FEATURES
 from jdraw.plans import Plan
 from jdraw.train import splitter as splitter_train
 
@@ -218,13 +219,14 @@ def test_patches_show_the_ink_as_drawn_and_the_strokes_around_a_corner():
 def test_examples_label_corners_and_joins_from_the_reference_strokes():
     refs = [_line(20, 20, 20, 60), _line(20, 60, 70, 60)]
     ink = geometry.render_strokes(refs)
-    xs, ys, xj, yj = splitter_train.examples([_ell()], refs, ink)
+    xs, ys, xj, yj, cs, cj = splitter_train.examples([_ell()], refs, ink)
     assert xs.shape == (1, splits.CORNER_FEATURES) and ys.tolist() == [1.0]
     assert len(xj) == 1 and yj.tolist() == [0.0]  # cut there: the two parts are not one line
     line = [_line(10, 50, 40, 50)]
     a, b = _line(10, 50, 24, 50), _line(26, 50, 40, 50)
-    xs, ys, xj, yj = splitter_train.examples([a, b], line, geometry.render_strokes(line))
+    xs, ys, xj, yj, _, cj = splitter_train.examples([a, b], line, geometry.render_strokes(line))
     assert len(xs) == 0 and yj.tolist() == [1.0]  # one reference line cut in two
+    assert cj.shape == (1, CONTEXT_FEATURES) and cj[0, 0] == np.float32(np.log1p(2) / 3)
 
 
 def test_fit_learns_a_rule_both_nets_can_see():
@@ -269,3 +271,34 @@ def test_examples_of_other_features_are_refused_by_name(tmp_path):
     write_chunk(old, [(ex[0], ex[1], ex[2][:, 2:], ex[3])])  # joins made before the bridge
     with pytest.raises(ValueError, match="delete them"):
         splitter_train.load_examples([old])
+    write_chunk(old, [ex[:4]])  # made before examples carried their drawing's context
+    assert len(splitter_train.load_examples([old])) == 4
+    with pytest.raises(ValueError, match="context; delete them"):
+        splitter_train.load_examples([old], context=True)
+
+
+def test_a_splitter_with_context_judges_the_same_corner_by_the_drawing_around_it(tmp_path):
+    # One right-angle corner and one more stroke far from it, inside the corner's box, so the
+    # corner's own features are the same either way. Beside a bar the rule is to cut it (as
+    # a kanji's), beside a ring to keep it (as a letter's): only the context tells them apart.
+    t = np.linspace(0, 2 * np.pi, 50)
+    ring = np.rint(np.stack([55 + 8 * np.cos(t), 30 + 8 * np.sin(t)], 1))
+    bar = _line(45, 25, 65, 25)
+    cut = [_line(20, 20, 20, 60), _line(20, 60, 70, 60)]
+    parts = []
+    for k in range(40):
+        other = bar if k % 2 else ring
+        refs = (cut if k % 2 else [_ell()]) + [other]
+        parts.append(splitter_train.examples([_ell(), other], refs, geometry.render_strokes(refs)))
+    data = tuple(np.concatenate([p[i] for p in parts]) for i in range(6))
+    assert data[1].sum() == 20  # the corners beside a bar are cuts
+    kw = dict(steps=300, batch=64, hidden=16, patches=False)
+    model, _ = splitter_train.fit(data, context=True, **kw)
+    splits.save(model, tmp_path)
+    back = splits.load(tmp_path)
+    assert back.context
+    by_bar, by_ring = splits.split_many(back, [[_ell(), bar], [_ell(), ring]])
+    assert len(by_bar) == 3 and len(by_ring) == 2
+    blind, _ = splitter_train.fit(data, context=False, **kw)
+    by_bar, by_ring = splits.split_many(blind, [[_ell(), bar], [_ell(), ring]])
+    assert len(by_bar) == len(by_ring)  # without the context the corner looks the same

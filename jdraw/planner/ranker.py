@@ -28,6 +28,7 @@ from flax import nnx
 
 from jdraw.geometry import CANVAS
 from jdraw.planner.stroke_tokens import (  # noqa: F401 (the ranker's inputs, named here too)
+    CONTEXT_FEATURES,
     PAIR_FEATURES,
     STROKE_FEATURES,
     Tokens,
@@ -38,6 +39,7 @@ from jdraw.planner.stroke_tokens import (  # noqa: F401 (the ranker's inputs, na
     stroke_masks,
     tokens,
 )
+from jdraw.planner.stroke_tokens import context as drawing_context
 from jdraw.plans import actions_from_strokes
 
 
@@ -54,12 +56,20 @@ class MLP(nnx.Module):
 
 
 class Ranker(nnx.Module):
-    """Pairwise order and per-stroke heading scores (see the module docstring)."""
+    """Pairwise order and per-stroke heading scores (see the module docstring).
 
-    def __init__(self, hidden: int = 64, *, rngs: nnx.Rngs):
+    ``context``: with ``True``, every pair's and stroke's inputs also carry the
+    drawing's :func:`~jdraw.planner.stroke_tokens.context` (``CONTEXT_FEATURES``
+    numbers), so one ranker can learn different rules for different kinds of
+    drawing; ``False`` is the ranker the bundles before it hold.
+    """
+
+    def __init__(self, hidden: int = 64, *, context: bool = False, rngs: nnx.Rngs):
         self.hidden = hidden
-        self.pair_net = MLP(PAIR_FEATURES, hidden, rngs)
-        self.heading_net = MLP(STROKE_FEATURES, hidden, rngs)
+        self.context = bool(context)
+        c = CONTEXT_FEATURES if context else 0
+        self.pair_net = MLP(PAIR_FEATURES + c, hidden, rngs)
+        self.heading_net = MLP(STROKE_FEATURES + c, hidden, rngs)
 
     def pair(self, x_ab, x_ba):
         """Log-odds that a precedes b, from both orders' inputs ``[..., PAIR_FEATURES]``."""
@@ -171,23 +181,31 @@ def order_many(
     g, st = nnx.split(ranker)
     tks = [tokens(s) for s in characters]
     counts = [len(s) for s in characters]
+    c = CONTEXT_FEATURES if ranker.context else 0
+    ctx = [drawing_context(tk) if c else np.zeros(0, np.float32) for tk in tks]
     cat = lambda xs, width: np.concatenate(xs) if xs else np.zeros((0, width), np.float32)
     h = chunked(
         _headings,
         g,
         st,
-        cat([tk.feats for tk in tks], STROKE_FEATURES),
-        cat([tk.rfeats for tk in tks], STROKE_FEATURES),
+        cat([with_context(tk.feats, x) for tk, x in zip(tks, ctx)], STROKE_FEATURES + c),
+        cat([with_context(tk.rfeats, x) for tk, x in zip(tks, ctx)], STROKE_FEATURES + c),
     )
     flips = np.split(h < 0, np.cumsum(counts)[:-1])
     tks = [flipped(tk, f) for tk, f in zip(tks, flips)]
     pairs = []
-    for tk, n in zip(tks, counts):
+    for tk, n, x in zip(tks, counts, ctx):
         i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
-        pairs.append(pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()))
-    net = chunked(_pair_net, g, st, cat(pairs, PAIR_FEATURES))
+        pairs.append(with_context(pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()), x))
+    net = chunked(_pair_net, g, st, cat(pairs, PAIR_FEATURES + c))
     nets = np.split(net, np.cumsum([n * n for n in counts])[:-1])
     return [(_order(v.reshape(n, n)), [bool(x) for x in f]) for v, n, f in zip(nets, counts, flips)]
+
+
+def with_context(rows: np.ndarray, ctx: np.ndarray) -> np.ndarray:
+    """``rows [K, F]`` with the drawing's context ``ctx [C]`` appended to each (``C`` may be 0)."""
+    rows = np.asarray(rows, np.float32)
+    return np.concatenate([rows, np.broadcast_to(ctx, (len(rows), len(ctx)))], -1)
 
 
 def _order(net: np.ndarray) -> list[int]:
@@ -249,7 +267,7 @@ def save(ranker: Ranker, out_dir, provenance: dict | None = None) -> pathlib.Pat
     """Writes ``ranker.npz`` and ``ranker.json`` into a bundle folder."""
     from jdraw.model import bundle
 
-    meta = {"hidden": ranker.hidden, "provenance": provenance or {}}
+    meta = {"hidden": ranker.hidden, "context": ranker.context, "provenance": provenance or {}}
     return bundle.save_net(ranker, out_dir, "ranker", meta)
 
 
@@ -258,7 +276,11 @@ def load(bundle_dir) -> Ranker | None:
     from jdraw.model import bundle
 
     return bundle.load_net(
-        bundle_dir, "ranker", lambda meta: Ranker(int(meta.get("hidden", 64)), rngs=nnx.Rngs(0))
+        bundle_dir,
+        "ranker",
+        lambda meta: Ranker(
+            int(meta.get("hidden", 64)), context=bool(meta.get("context", False)), rngs=nnx.Rngs(0)
+        ),
     )
 
 

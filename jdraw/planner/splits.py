@@ -36,8 +36,8 @@ from flax import nnx
 
 from jdraw.planner.corners import GEOMETRY_FEATURES, _box, corner_features, corners, split_at
 from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_links, join_features, join_pairs
-from jdraw.planner.ranker import MLP, chunked
-from jdraw.planner.stroke_tokens import stroke_masks
+from jdraw.planner.ranker import MLP, chunked, with_context
+from jdraw.planner.stroke_tokens import CONTEXT_FEATURES, context, stroke_masks, tokens
 
 PATCH = 5  # pixels each side of a corner or a join the nets see of the ink and strokes
 _SIDE = 2 * PATCH + 1
@@ -67,16 +67,27 @@ class Splitter(nnx.Module):
     ``reach``: how far apart two ends linked through the ink may be to be
     joined (:func:`jdraw.planner.joins.bridge`); 0, only ends a few pixels
     apart, as the first splitters did (their nets lack the bridge's features).
+    ``context``: every corner and pair also carries its drawing's
+    :func:`~jdraw.planner.stroke_tokens.context` (:func:`drawing_rows`), so a
+    corner of a kanji and one of a cursive word may be judged differently.
     """
 
     def __init__(
-        self, hidden: int = 64, patches: bool = True, reach: int = REACH, *, rngs: nnx.Rngs
+        self,
+        hidden: int = 64,
+        patches: bool = True,
+        reach: int = REACH,
+        *,
+        context: bool = False,
+        rngs: nnx.Rngs,
     ):
         self.hidden = hidden
         self.patches = patches  # whether the nets see the patches, or the geometry only
         self.reach = reach
-        self.split_net = MLP(CORNER_FEATURES if patches else GEOMETRY_FEATURES, hidden, rngs)
-        self.join_net = MLP(join_width(patches, reach), hidden, rngs)
+        self.context = bool(context)
+        c = CONTEXT_FEATURES if context else 0
+        self.split_net = MLP((CORNER_FEATURES if patches else GEOMETRY_FEATURES) + c, hidden, rngs)
+        self.join_net = MLP(join_width(patches, reach) + c, hidden, rngs)
 
 
 @jax.jit
@@ -159,6 +170,13 @@ def all_pairs(
     return pairs, np.asarray(feats, np.float32).reshape(-1, width)
 
 
+def drawing_rows(rows: np.ndarray, strokes, on: bool = True) -> np.ndarray:
+    """``rows [K, F]`` of one drawing's corners or pairs, its context appended if ``on``."""
+    if not on:
+        return rows
+    return with_context(rows, context(tokens(strokes)) if len(rows) else np.zeros(CONTEXT_FEATURES))
+
+
 def split_many(
     splitter: Splitter, characters, drawn=None, threshold: float = 0.0
 ) -> list[list[np.ndarray]]:
@@ -168,7 +186,9 @@ def split_many(
     """
     drawn = [None] * len(characters) if drawn is None else drawn
     found = [all_corners(s, d, splitter.patches) for s, d in zip(characters, drawn)]
-    x = np.concatenate([f for _, f in found]) if found else np.zeros((0, 1))
+    on = splitter.context
+    rows = [drawing_rows(f, s, on) for (_, f), s in zip(found, characters)]
+    x = np.concatenate(rows) if rows else np.zeros((0, 1))
     logit = _score(_split_logits, splitter, x)
     out, at = [], 0
     for strokes, (keys, _) in zip(characters, found):
@@ -195,7 +215,9 @@ def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: 
         all_pairs(s, ink, d, splitter.patches, splitter.reach)
         for s, ink, d in zip(characters, inks, drawn)
     ]
-    x = np.concatenate([f for _, f in found]) if found else np.zeros((0, 1))
+    on = splitter.context
+    rows = [drawing_rows(f, s, on) for (_, f), s in zip(found, characters)]
+    x = np.concatenate(rows) if rows else np.zeros((0, 1))
     logit = _score(_join_logits, splitter, x)
     out, at = [], 0
     for strokes, ink, (pairs, _) in zip(characters, inks, found):
@@ -260,6 +282,7 @@ def save(splitter: Splitter, out_dir, provenance: dict | None = None) -> pathlib
         "hidden": splitter.hidden,
         "patches": splitter.patches,
         "reach": splitter.reach,
+        "context": splitter.context,
         "corner_features": CORNER_FEATURES if splitter.patches else GEOMETRY_FEATURES,
         "join_features": join_width(splitter.patches, splitter.reach),
         "provenance": provenance or {},
@@ -282,6 +305,7 @@ def load(bundle_dir) -> Splitter | None:
                 f"join features, this jdraw computes {want}; retrain it "
                 "(configs/default.py, stage splitter)"
             )
-        return Splitter(int(meta.get("hidden", 64)), patches, reach, rngs=nnx.Rngs(0))
+        ctx = bool(meta.get("context", False))
+        return Splitter(int(meta.get("hidden", 64)), patches, reach, context=ctx, rngs=nnx.Rngs(0))
 
     return bundle.load_net(bundle_dir, "splitter", build)

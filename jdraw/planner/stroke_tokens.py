@@ -169,3 +169,63 @@ def pair_inputs(feats: np.ndarray, rel: np.ndarray, i, j) -> np.ndarray:
     """``float32 [K, PAIR_FEATURES]`` for index arrays ``i``, ``j`` of stroke pairs."""
     a, b = feats[i], feats[j]
     return np.concatenate([a, b, a - b, rel[i, j]], -1).astype(np.float32)
+
+
+CONTEXT_FEATURES = 12
+
+
+def _turning(path: np.ndarray, eps: float = 1.5) -> float:
+    """Total absolute turning (radians) of a pixel path, simplified first.
+
+    Douglas-Peucker to ``eps`` pixels (OpenCV) takes the pixel stairs out, so
+    a straight line turns 0 and a circle about 2 pi.
+    """
+    import cv2
+
+    q = cv2.approxPolyDP(np.asarray(path, np.int32).reshape(-1, 1, 2), eps, False)[:, 0]
+    d = np.diff(q.astype(np.float64), axis=0)
+    if len(d) < 2:
+        return 0.0
+    a = np.arctan2(d[:, 1], d[:, 0])
+    t = np.diff(a)
+    return float(np.abs((t + np.pi) % (2 * np.pi) - np.pi).sum())
+
+
+def context(tk: Tokens) -> np.ndarray:
+    """``float32 [CONTEXT_FEATURES]``: what kind of drawing the strokes make, as a whole.
+
+    Read from the strokes alone and the same whichever way each is drawn: how
+    many there are, the ink's box, their lengths, how much they turn, how many
+    close on themselves, how straight they are, how often they cross and touch.
+    A ranker given this beside each stroke and pair can learn that a drawing of
+    few curved strokes follows other rules than one of many straight ones (the
+    script is in the image, not in a flag).
+    """
+    paths = tk.paths
+    n = len(paths)
+    if n == 0:
+        return np.zeros(CONTEXT_FEATURES, np.float32)
+    allp = np.concatenate(paths)
+    size = allp.max(0) - allp.min(0) + 1
+    length = np.array([len(p) for p in paths], np.float64)
+    turn = np.array([_turning(p) for p in paths]) / (2 * np.pi)
+    chord = np.array([np.linalg.norm(p[-1] - p[0]) for p in paths])
+    closed = (chord <= 3) & (length >= 12)
+    straight = chord / np.maximum(length - 1, 1)
+    off = ~np.eye(n, dtype=bool)
+    pair_mean = lambda k: float(tk.rel[..., k][off].mean()) if n > 1 else 0.0
+    f = [
+        np.log1p(n) / 3,
+        size[0] / 100,
+        size[1] / 100,
+        length.mean() / 100,
+        length.max() / 100,
+        turn.mean(),
+        turn.max(),
+        closed.mean(),
+        straight.mean(),
+        straight.min(),
+        pair_mean(5),  # crosses
+        pair_mean(0),  # touches
+    ]
+    return np.asarray(f, np.float32)

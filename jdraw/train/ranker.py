@@ -34,7 +34,10 @@ def examples(drawn_strokes, ref_images, ref_points, iou: float = 0.5):
 
     Returns:
       ``(pairs [P, PAIR_FEATURES] a-before-b inputs, their swapped inputs,
-      heading feats [H, F], reversed feats [H, F], heading labels [H])``.
+      heading feats [H, F], reversed feats [H, F], heading labels [H],
+      the drawing's context for each pair [P, C] and each heading [H, C])``
+      (:func:`jdraw.planner.stroke_tokens.context`; a ranker without context
+      leaves the last two out).
     """
     if not drawn_strokes:
         return None
@@ -63,13 +66,48 @@ def examples(drawn_strokes, ref_images, ref_points, iou: float = 0.5):
         rp = np.asarray(ref_points[best[a]], float)
         s = tk.paths[a][0]
         lab.append(np.linalg.norm(s - rp[0]) <= np.linalg.norm(s - rp[-1]))
-    return x_ab, x_ba, tk.feats[idx], tk.rfeats[idx], np.asarray(lab, np.float32)
+    ctx = ranker.drawing_context(tk)
+    tile = lambda k: np.repeat(ctx[None], k, 0)
+    return (
+        x_ab,
+        x_ba,
+        tk.feats[idx],
+        tk.rfeats[idx],
+        np.asarray(lab, np.float32),
+        tile(len(x_ab)),
+        tile(len(idx)),
+    )
 
 
-def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3, seed: int = 0):
-    """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs."""
-    x_ab, x_ba, f, rf, lab = data
-    model = ranker.Ranker(rngs=nnx.Rngs(seed))
+def train_ranker(
+    data,
+    *,
+    steps: int = 3000,
+    batch: int = 512,
+    lr: float = 3e-3,
+    seed: int = 0,
+    context: bool = False,
+    hidden: int = 64,
+    share=None,
+):
+    """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs.
+
+    ``context``: the ranker also sees each drawing's context (``data``'s last two arrays).
+    ``share``: ``(pair groups [P], heading groups [H], {group: share of each batch})``:
+    rows drawn so that each group fills its share of a batch whatever its size (a set of
+    letters has a pair or two per drawing, a kanji dozens); ``None``: uniformly.
+    """
+    x_ab, x_ba, f, rf, lab = data[:5]
+    if context:
+        if len(data) < 7:
+            raise ValueError(
+                "a ranker with context needs examples made with their context: "
+                "these predate it; remove the workdir's examples/ to make them again"
+            )
+        cp, ch = data[5], data[6]
+        x_ab, x_ba = np.concatenate([x_ab, cp], -1), np.concatenate([x_ba, cp], -1)
+        f, rf = np.concatenate([f, ch], -1), np.concatenate([rf, ch], -1)
+    model = ranker.Ranker(hidden, context=context, rngs=nnx.Rngs(seed))
     tx = optax.adam(lr)
     graphdef, params = nnx.split(model, nnx.Param)
     opt = tx.init(params)
@@ -89,10 +127,17 @@ def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3,
         return optax.apply_updates(params, upd), opt, loss, accs
 
     rng = np.random.default_rng(seed)
+    pp = hp = None
+    if share is not None:
+        pp, hp = (row_weights(g, share[2]) for g in share[:2])
     logs = []
     for s in range(steps):
-        pi = rng.integers(len(x_ab), size=batch)
-        hi = rng.integers(len(f), size=batch)
+        if share is None:  # as every ranker before shares was fitted
+            pi = rng.integers(len(x_ab), size=batch)
+            hi = rng.integers(len(f), size=batch)
+        else:
+            pi = rng.choice(len(x_ab), size=batch, p=pp)
+            hi = rng.choice(len(f), size=batch, p=hp)
         # Show each pair in both orders: the net learns an antisymmetric score.
         params, opt, loss, accs = step(params, opt, x_ab[pi], x_ba[pi], f[hi], rf[hi], lab[hi])
         if s % 500 == 0 or s == steps - 1:
@@ -106,6 +151,23 @@ def train_ranker(data, *, steps: int = 3000, batch: int = 512, lr: float = 3e-3,
             )
     nnx.update(model, params)
     return model, logs
+
+
+def row_weights(groups, share: dict) -> np.ndarray:
+    """Sampling probabilities of rows in ``groups`` so group ``g`` fills ``share[g]`` of a batch.
+
+    Groups not in ``share`` and shares of groups without rows are dropped; the rest
+    are renormalised.
+    """
+    groups = np.asarray(groups)
+    w = np.zeros(len(groups))
+    for g, s in share.items():
+        rows = groups == g
+        if rows.any():
+            w[rows] = float(s) / rows.sum()
+    if w.sum() <= 0:
+        raise ValueError(f"no rows in any group of {sorted(share)}")
+    return w / w.sum()
 
 
 def traced_chunk(cfg, ks, pool, kind: str, k: int, salt: int = 0):
@@ -224,8 +286,20 @@ def read_chunks(paths, n: int) -> tuple[np.ndarray, ...]:
     return tuple(np.concatenate([p[i] for p in parts]) for i in range(n))
 
 
-def load_examples(paths) -> tuple[np.ndarray, ...]:
-    return read_chunks(paths, 5)
+def set_groups(paths, names) -> tuple[np.ndarray, np.ndarray]:
+    """Each pair's and heading's set name (``names[i]`` for chunk ``paths[i]``), in
+    :func:`load_examples`' order."""
+    pg, hg = [], []
+    for p, name in zip(paths, names):
+        with np.load(p) as z:
+            pg += [name] * len(z["arr_0"])
+            hg += [name] * len(z["arr_2"])
+    return np.asarray(pg), np.asarray(hg)
+
+
+def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
+    """Stacked :func:`examples` of every chunk; the context arrays too if ``context``."""
+    return read_chunks(paths, 7 if context else 5)
 
 
 def train(cfg, workdir, progress: bool = True) -> dict:
@@ -236,13 +310,26 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     t0 = time.time()
     paths = make_examples(cfg, workdir, progress=progress)
     t1 = time.time()
-    data = load_examples(paths)
+    context = bool(cfg.get("context", False))
+    try:
+        data = load_examples(paths, context)
+    except KeyError as e:  # a chunk made before examples carried their context
+        raise ValueError(
+            f"{workdir / 'examples'}: these examples have no context (made by older code); "
+            "remove that folder to make them again"
+        ) from e
+    share = None
+    if cfg.get("share", None):  # {set: share of each batch}
+        share = (*set_groups(paths, [j[0] for j in chunk_jobs(cfg)]), dict(cfg.share))
     model, logs = train_ranker(
         data,
         steps=int(cfg.steps),
         batch=int(cfg.batch),
         lr=float(cfg.learning_rate),
         seed=int(cfg.seed),
+        context=context,
+        hidden=int(cfg.get("hidden", 64)),
+        share=share,
     )
     t2 = time.time()
     result = {

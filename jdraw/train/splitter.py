@@ -30,7 +30,11 @@ from jdraw.train.ranker import made_chunks, read_chunks
 
 
 def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[np.ndarray, ...]:
-    """Split and join examples of one character: ``(xs, ys, xj, yj)``.
+    """Split and join examples of one character: ``(xs, ys, xj, yj, cs, cj)``.
+
+    ``cs`` and ``cj`` are the drawing's context (:func:`jdraw.planner.splits.drawing_rows`)
+    for each corner (of the traced strokes) and each pair (of the strokes cut), which only
+    a splitter with ``context`` reads.
 
     Args:
       traced: the tracer's strokes; refs: the reference strokes; ink: the ink
@@ -54,11 +58,14 @@ def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[n
         joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
     ]
+    ctx = lambda rows, s: splits.drawing_rows(rows[:, :0], s)
     return (
         xs,
         np.asarray(ys, np.float32),
         xj,
         np.asarray(yj, np.float32),
+        ctx(xs, strokes),
+        ctx(xj, cut),
     )
 
 
@@ -72,17 +79,21 @@ def fit(
     patches: bool = True,
     hidden: int = 64,
     reach: int = joins.REACH,
+    context: bool = False,
 ):
     """Fits a :class:`jdraw.planner.splits.Splitter` on stacked :func:`examples`.
 
     ``patches=False`` fits nets that see the geometry only (the first
-    features of each example); ``reach`` is the one the examples were made with.
+    features of each example); ``reach`` is the one the examples were made with;
+    ``context``: the nets also see each drawing's context (``data``'s last two arrays).
     """
-    xs, ys, xj, yj = data
+    xs, ys, xj, yj = data[:4]
     if not patches:
         xs = xs[:, : corners.GEOMETRY_FEATURES]
         xj = xj[:, : splits.join_width(False, reach)]
-    model = splits.Splitter(hidden, patches, reach, rngs=nnx.Rngs(seed))
+    if context:
+        xs, xj = np.concatenate([xs, data[4]], -1), np.concatenate([xj, data[5]], -1)
+    model = splits.Splitter(hidden, patches, reach, context=context, rngs=nnx.Rngs(seed))
     tx = optax.adam(lr)
     graphdef, params = nnx.split(model, nnx.Param)
     opt = tx.init(params)
@@ -134,8 +145,15 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     return made_chunks(cfg, workdir, label, progress=progress)
 
 
-def load_examples(paths) -> tuple[np.ndarray, ...]:
-    data = read_chunks(paths, 4)
+def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
+    """Stacked :func:`examples` of every chunk; the context arrays too if ``context``."""
+    try:
+        data = read_chunks(paths, 6 if context else 4)
+    except KeyError as e:
+        raise ValueError(
+            f"{pathlib.Path(paths[0]).parent}: examples made before they carried their "
+            "drawing's context; delete them to remake them"
+        ) from e
     made = (data[0].shape[1], data[2].shape[1])
     want = (splits.CORNER_FEATURES, splits.JOIN_FEATURES)
     if made != want:
@@ -154,7 +172,8 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     t0 = time.time()
     paths = make_examples(cfg, workdir, progress=progress)
     t1 = time.time()
-    data = load_examples(paths)
+    context = bool(cfg.get("context", False))
+    data = load_examples(paths, context)
     model, logs = fit(
         data,
         steps=int(cfg.steps),
@@ -164,6 +183,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         patches=bool(cfg.get("patches", True)),
         hidden=int(cfg.get("hidden", 64)),
         reach=int(cfg.get("reach", joins.REACH)),
+        context=context,
     )
     t2 = time.time()
     result = {

@@ -1,0 +1,111 @@
+"""What each change to the stroke ranker buys: width, the drawing's context, other scripts.
+
+  PYTHONPATH=. python bench/ranker_ablation.py [--workdir runs/ranker_ablation]
+      [--fits kanji64,mix64,mix128,ctx128] [--seeds 0,1] [--splits val]
+
+Traces the default ranker config's examples once (``configs/default.py``'s
+``ranker`` stage, the bundled default as tracer: KanjiVG's 600 traced and 2,500
+demonstrated characters, 2,000 Latin letters, 400 cursive fragments; chunks are
+saved in the workdir, so a second run reuses them), fits one ranker per fit and
+seed, and scores each by reordering the same plans: the bundled default's
+strokes (its tracer and splitter, ``order="model"``) of the KanjiVG ``--splits``
+(1,000 characters each) and of the Latin dev glyphs drawn four times (clean lines),
+planned once and kept in the workdir. This is what ``eval.py`` does after
+planning, so a ranker's figures here equal its ``eval.py`` figures for the same
+strokes. Choose by the KanjiVG val split; the Latin dev split is only reported.
+
+Fits: ``kanji64`` (KanjiVG only, 64 wide, no context: the ranker before
+2026-12-04), ``kanji128``, ``mix64`` and ``mix128`` (all sets, no context),
+``ctx64`` and ``ctx128`` (all sets, with the drawing's context: the default).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+import pickle
+
+from configs import default
+from jdraw.data import demos as D
+from jdraw.data import kanji, latin
+from jdraw.evaluation import evaluate, metrics
+from jdraw.evaluation import latin as latin_eval
+from jdraw.evaluation.batched import plan_batched
+from jdraw.model import bundle
+from jdraw.planner import ranker
+from jdraw.train import ranker as ranker_train
+
+FITS = {  # name: (sets, hidden, context)
+    "kanji64": (("kanji",), 64, False),
+    "kanji128": (("kanji",), 128, False),
+    "mix64": (("kanji", "latin", "cursive"), 64, False),
+    "mix128": (("kanji", "latin", "cursive"), 128, False),
+    "ctx64": (("kanji", "latin", "cursive"), 64, True),
+    "ctx128": (("kanji", "latin", "cursive"), 128, True),
+}
+
+
+def plans(work: pathlib.Path, splits) -> dict:
+    """``{name: (demos, inputs or None, plan)}`` of the default's strokes, made once."""
+    ks, out = kanji.load(progress=False), {}
+    for split in splits:
+        f = work / f"plans_kanji_{split}.pkl"
+        if not f.exists():
+            idx = kanji.split_indices(ks, split)
+            f.write_bytes(pickle.dumps(evaluate.plan_chars(ks, idx, None, progress=True)[2]))
+        idx = kanji.split_indices(ks, split)
+        out[f"kanji {split}"] = (
+            [D.sample(ks, int(i)) for i in idx],
+            None,
+            pickle.loads(f.read_bytes()),
+        )
+    demos, inputs = latin_eval.drawings(latin.load("dev"), 4, "clean")
+    f = work / "plans_latin_dev.pkl"
+    if not f.exists():
+        f.write_bytes(pickle.dumps(plan_batched(inputs, None, batch=32, progress=True)))
+    out["latin dev"] = (demos, inputs, pickle.loads(f.read_bytes()))
+    return out
+
+
+def main(argv=None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--workdir", default="runs/ranker_ablation")
+    p.add_argument("--fits", default=",".join(FITS))
+    p.add_argument("--seeds", default="0,1")
+    p.add_argument("--splits", default="val", help="KanjiVG splits to score (val, test)")
+    a = p.parse_args(argv)
+    work = pathlib.Path(a.workdir)
+    cfg = default.ranker()
+    cfg.tracer, cfg.out = str(bundle.DEFAULT_BUNDLE), str(work / "out")
+    paths = ranker_train.make_examples(cfg, work)
+    names = [j[0] for j in ranker_train.chunk_jobs(cfg)]
+    groups = ranker_train.set_groups(paths, names)[0]
+    print({n: int((groups == n).sum()) for n in sorted(set(names))}, "pairs")
+    sets = plans(work, a.splits.split(","))
+    rows = {}
+    for fit in a.fits.split(","):
+        kinds, hidden, context = FITS[fit]
+        keep = [i for i, n in enumerate(names) if n in kinds]
+        sub = ranker_train.load_examples([paths[i] for i in keep], context=True)
+        for seed in (int(s) for s in a.seeds.split(",")):
+            model, _ = ranker_train.train_ranker(
+                sub,
+                steps=int(cfg.steps),
+                batch=int(cfg.batch),
+                lr=float(cfg.learning_rate),
+                seed=seed,
+                context=context,
+                hidden=hidden,
+            )
+            row = {}
+            for name, (demos, inputs, plan) in sets.items():
+                r = metrics.score(demos, ranker.reorder(plan, "ranker", model), inputs)
+                row[name] = [round(r["order_all_pairs"], 4), round(r["direction_agreement"], 4)]
+            rows[f"{fit} seed {seed}"] = row
+            print(f"{fit} seed {seed}: order over all pairs, direction:", json.dumps(row))
+    (work / "results.json").write_text(json.dumps(rows, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()

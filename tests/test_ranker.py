@@ -201,13 +201,13 @@ def test_a_ranker_with_context_keeps_it_through_its_bundle(rng, tmp_path):
     assert ranker.order_many(ranker.load(old), chars)
 
 
-def test_shares_fill_each_batch_by_set_whatever_its_size():
-    groups = np.array(["kanji"] * 900 + ["latin"] * 100)
-    p = ranker_train.row_weights(groups, {"kanji": 0.5, "latin": 0.5, "cursive": 0.2})
-    assert np.isclose(p.sum(), 1.0)
-    np.testing.assert_allclose([p[:900].sum(), p[900:].sum()], [0.5, 0.5])  # no cursive rows
-    assert np.allclose(p[:900], p[0]) and p[900] == 9 * p[0]
+def test_examples_made_before_the_context_train_a_ranker_without_it_only(rng, tmp_path):
+    ref = sorted(_bars(rng, 3), key=lambda s: s[0, 1])
+    imgs = np.stack([geometry.render_strokes([s]) for s in ref])
+    old = tmp_path / "old.npz"
+    ranker_train.write_chunk(old, [ranker_train.examples(ref[::-1], imgs, ref)[:5]])
+    assert len(ranker_train.load_examples([old])) == 5
     import pytest
 
-    with pytest.raises(ValueError, match="no rows"):
-        ranker_train.row_weights(groups, {"cursive": 1.0})
+    with pytest.raises(ValueError, match="context; delete them"):
+        ranker_train.load_examples([old], context=True)

@@ -88,14 +88,10 @@ def train_ranker(
     seed: int = 0,
     context: bool = False,
     hidden: int = 64,
-    share=None,
 ):
     """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs.
 
     ``context``: the ranker also sees each drawing's context (``data``'s last two arrays).
-    ``share``: ``(pair groups [P], heading groups [H], {group: share of each batch})``:
-    rows drawn so that each group fills its share of a batch whatever its size (a set of
-    letters has a pair or two per drawing, a kanji dozens); ``None``: uniformly.
     """
     x_ab, x_ba, f, rf, lab = data[:5]
     if context:
@@ -127,17 +123,10 @@ def train_ranker(
         return optax.apply_updates(params, upd), opt, loss, accs
 
     rng = np.random.default_rng(seed)
-    pp = hp = None
-    if share is not None:
-        pp, hp = (row_weights(g, share[2]) for g in share[:2])
     logs = []
     for s in range(steps):
-        if share is None:  # as every ranker before shares was fitted
-            pi = rng.integers(len(x_ab), size=batch)
-            hi = rng.integers(len(f), size=batch)
-        else:
-            pi = rng.choice(len(x_ab), size=batch, p=pp)
-            hi = rng.choice(len(f), size=batch, p=hp)
+        pi = rng.integers(len(x_ab), size=batch)
+        hi = rng.integers(len(f), size=batch)
         # Show each pair in both orders: the net learns an antisymmetric score.
         params, opt, loss, accs = step(params, opt, x_ab[pi], x_ba[pi], f[hi], rf[hi], lab[hi])
         if s % 500 == 0 or s == steps - 1:
@@ -151,23 +140,6 @@ def train_ranker(
             )
     nnx.update(model, params)
     return model, logs
-
-
-def row_weights(groups, share: dict) -> np.ndarray:
-    """Sampling probabilities of rows in ``groups`` so group ``g`` fills ``share[g]`` of a batch.
-
-    Groups not in ``share`` and shares of groups without rows are dropped; the rest
-    are renormalised.
-    """
-    groups = np.asarray(groups)
-    w = np.zeros(len(groups))
-    for g, s in share.items():
-        rows = groups == g
-        if rows.any():
-            w[rows] = float(s) / rows.sum()
-    if w.sum() <= 0:
-        raise ValueError(f"no rows in any group of {sorted(share)}")
-    return w / w.sum()
 
 
 def traced_chunk(cfg, ks, pool, kind: str, k: int, salt: int = 0):
@@ -299,7 +271,13 @@ def set_groups(paths, names) -> tuple[np.ndarray, np.ndarray]:
 
 def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
     """Stacked :func:`examples` of every chunk; the context arrays too if ``context``."""
-    return read_chunks(paths, 7 if context else 5)
+    try:
+        return read_chunks(paths, 7 if context else 5)
+    except KeyError as e:  # a chunk made before examples carried their context
+        raise ValueError(
+            f"{pathlib.Path(paths[0]).parent}: examples made before they carried their "
+            "drawing's context; delete them to remake them"
+        ) from e
 
 
 def train(cfg, workdir, progress: bool = True) -> dict:
@@ -311,16 +289,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     paths = make_examples(cfg, workdir, progress=progress)
     t1 = time.time()
     context = bool(cfg.get("context", False))
-    try:
-        data = load_examples(paths, context)
-    except KeyError as e:  # a chunk made before examples carried their context
-        raise ValueError(
-            f"{workdir / 'examples'}: these examples have no context (made by older code); "
-            "remove that folder to make them again"
-        ) from e
-    share = None
-    if cfg.get("share", None):  # {set: share of each batch}
-        share = (*set_groups(paths, [j[0] for j in chunk_jobs(cfg)]), dict(cfg.share))
+    data = load_examples(paths, context)
     model, logs = train_ranker(
         data,
         steps=int(cfg.steps),
@@ -329,7 +298,6 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         seed=int(cfg.seed),
         context=context,
         hidden=int(cfg.get("hidden", 64)),
-        share=share,
     )
     t2 = time.time()
     result = {

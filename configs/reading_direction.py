@@ -12,7 +12,8 @@ Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EV
     fonts-freefont-ttf fonts-sil-ezra fonts-hosny-amiri fonts-dancingscript \
     fonts-breip fonts-dkg-handwriting fonts-humor-sans fonts-comic-neue fonts-lobstertwo \
     fonts-arphic-ukai fonts-arphic-uming fonts-wqy-zenhei fonts-ipafont-gothic \
-    fonts-ipafont-mincho fonts-unfonts-core fonts-nanum
+    fonts-ipafont-mincho fonts-unfonts-core fonts-nanum \
+    fonts-ldco fonts-freefarsi fonts-lemonada fonts-sil-alkalami fonts-nafees fonts-paktype
 
 Random letters of 15 scripts set in the training fonts (words_per_script
 drawings per left-to-right script, rtl_words_per_script per right-to-left
@@ -38,8 +39,8 @@ def get_config() -> ml_collections.ConfigDict:
     c.stage = "reading"
     c.seed = 0
     c.out = "jdraw/assets/reading"
-    c.words_per_script = 300  # drawings per left-to-right script
-    c.rtl_words_per_script = 1500  # drawings per right-to-left script
+    c.words_per_script = 400  # drawings per left-to-right script
+    c.rtl_words_per_script = 2500  # drawings per right-to-left script
     c.sketches = 600
     c.cursive_words = 600  # drawings of joined-up English (EMS Allure train words), left to right
     c.min_height = 30  # px, ink height of a drawing
@@ -50,7 +51,7 @@ def get_config() -> ml_collections.ConfigDict:
     c.stretch = 1.4  # lines also cut stretched along x by a factor in [1/stretch, stretch]
     c.width = 64  # px, window width (windows are reading.WINDOW = 32 px high)
     c.channels = (16, 32, 48, 64)
-    c.steps = 3000
+    c.steps = 6000
     c.batch = 256
     c.learning_rate = 3e-3
     c.augment = 1.0  # strength of jdraw.train.reading.augment's distortions (0: thickening only)

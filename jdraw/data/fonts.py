@@ -37,6 +37,12 @@ _UKIJ = (
     "Tuz", "Basma", "Ekran", "Qolyazma", "Ku", "Sls", "Nsq", "Junu", "Di", "Me", "Tor", "Ru",
     "Zilwa", "Saet", "Es", "Kesme", "Chechek",
 )  # fmt: skip
+# Hebrew faces of fonts-ldco (<face>.ttf), Louis Davis & Co.
+_LDCO = (
+    "Amit", "Daniel", "ECO", "HarSinai", "Hidekel", "Josef", "Kimchi", "Lilach", "Miso", "Mixer",
+    "Neo", "Noam", "PatchSans", "PatchSerif", "PatchStencil", "Sayphan", "Skechers", "Sticks",
+    "Strokes", "YamSuf",
+)  # fmt: skip
 
 # name -> font. Culmus, KACST, Arabeyes, FarsiWeb, UKIJ, SIL, URW and a few more train the
 # detector (a few of them only set its threshold); Noto, FreeFont, Amiri, SIL Ezra and
@@ -72,6 +78,7 @@ FONTS = {
     "noto_sans_hebrew": Font("NotoSansHebrew-Regular.ttf", "fonts-noto-core"),
     "noto_serif_hebrew": Font("NotoSerifHebrew-Regular.ttf", "fonts-noto-core"),
     "ezra": Font("SILEOT.ttf", "fonts-sil-ezra"),
+    **{f"ldco_{k.lower()}": Font(f"{k}.ttf", "fonts-ldco") for k in _LDCO},
     # Arabic script
     "kacst_book": Font("KacstBook.ttf", "fonts-kacst"),
     "kacst_naskh": Font("KacstNaskh.ttf", "fonts-kacst"),
@@ -106,6 +113,15 @@ FONTS = {
     "noto_kufi_arabic": Font("NotoKufiArabic-Regular.ttf", "fonts-noto-core"),
     "noto_nastaliq_urdu": Font("NotoNastaliqUrdu-Regular.ttf", "fonts-noto-core"),
     "amiri": Font("Amiri-Regular.ttf", "fonts-hosny-amiri"),
+    "free_farsi": Font("FreeFarsi.ttf", "fonts-freefarsi"),
+    "free_farsi_bold": Font("FreeFarsi-Bold.ttf", "fonts-freefarsi"),
+    "lemonada": Font("Lemonada-Regular.otf", "fonts-lemonada"),
+    "alkalami": Font("Alkalami-Regular.ttf", "fonts-sil-alkalami"),
+    "nafees": Font("NafeesWeb.ttf", "fonts-nafees"),
+    "paktype_naskh_basic": Font("PakType Naskh Basic.ttf", "fonts-paktype"),
+    "paktype_naqsh": Font("PakType Naqsh.ttf", "fonts-paktype"),
+    "paktype_ajrak": Font("PakType Ajrak.ttf", "fonts-paktype"),
+    "paktype_tehreer": Font("PakType Tehreer.ttf", "fonts-paktype"),
     # Latin, Greek, Cyrillic and more
     "dejavu_sans": Font("DejaVuSans.ttf", "fonts-dejavu-core"),
     "dejavu_serif": Font("DejaVuSerif.ttf", "fonts-dejavu-core"),
@@ -194,6 +210,7 @@ DETECTOR_TRAIN = {
         "shofar", "stam", "stam_sefarad", "anka", "gladia", "horev", "journal", "ozrad",
         "trashim", "makabi", "taamey_ashkenaz", "taamey_david", "taamey_frank",
         "keter_aram_tsova", "noto_rashi_hebrew", "dejavu_sans",
+        *(f"ldco_{k.lower()}" for k in _LDCO if k not in ("Mixer", "Noam")),
     ],
     "arabic": [
         "kacst_book", "kacst_naskh", "kacst_office", "kacst_farsi", "kacst_letter",
@@ -202,7 +219,8 @@ DETECTOR_TRAIN = {
         "ae_tholoth", "homa", "titr", "thabit", "lateef", "scheherazade", "ukij_tuz",
         "ukij_basma", "ukij_ekran", "ukij_qolyazma", "ukij_ku", "ukij_sls", "ukij_junu",
         "ukij_di", "ukij_me", "ukij_tor", "ukij_ru", "ukij_zilwa", "ukij_saet", "ukij_es",
-        "ukij_kesme", "dejavu_sans",
+        "ukij_kesme", "dejavu_sans", "free_farsi", "free_farsi_bold", "lemonada", "alkalami",
+        "nafees", "paktype_naskh_basic", "paktype_naqsh", "paktype_ajrak",
     ],
     "latin": [
         "dejavu_sans", "dejavu_serif", "liberation_sans", "liberation_serif", "kaushan",
@@ -223,8 +241,10 @@ DETECTOR_TRAIN = {
     "han": ["noto_sans_cjk_sc", "noto_sans_cjk_jp", "arphic_ukai", "wqy_zenhei", "ipa_gothic"],
 }  # fmt: skip
 DETECTOR_VAL = {
-    "hebrew": ["hillel", "dorian", "shmulik", "miriam_mono"],
-    "arabic": ["harmattan", "nazli", "ukij_nsq", "ukij_chechek", "kacst_screen"],
+    "hebrew": ["hillel", "dorian", "shmulik", "miriam_mono", "ldco_mixer", "ldco_noam"],
+    "arabic": [
+        "harmattan", "nazli", "ukij_nsq", "ukij_chechek", "kacst_screen", "paktype_tehreer",
+    ],
     "latin": ["urw_gothic", "andika", "dkg"],
     "cyrillic": ["andika"],
     "greek": ["urw_gothic"],

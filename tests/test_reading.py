@@ -106,7 +106,8 @@ def test_wide_region_tiles_go_right_to_left():
     line = np.stack([40 + 900 * t, 150 + 100 * np.sin(7 * np.pi * t)], 1)
     prep = prepare(photo_like([line], (300, 980), width=6))
     xs = lambda tiles: [t.transform.offset[0] for t in tiles]
-    ltr, rtl = layout.layout(prep)[1], layout.layout(prep, rtl=True)[1]
+    # A lone wave is drawn small (jdraw.images.gaps); 16 draws it at min_gap / width.
+    ltr, rtl = layout.layout(prep, 16.0)[1], layout.layout(prep, 16.0, rtl=True)[1]
     assert len(ltr) >= 8 and sorted(xs(ltr)) == sorted(xs(rtl))
     # Offsets map input to tile pixels, so a tile further right has a more negative offset.
     assert xs(ltr)[0] == max(xs(ltr)) and xs(rtl)[0] == min(xs(rtl))

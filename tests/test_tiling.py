@@ -15,6 +15,9 @@ from tests.synthetic import centreline_scores, photo_like, text_centrelines
 
 TOL_PX = 4.0
 MIN_SCORE = 0.95
+# A lone wave's lines are far apart (its gap is capped at four stroke widths), so it is
+# drawn small; four times the default min_gap draws it at min_gap / width, over many tiles.
+ACROSS_TILES = 16.0
 
 
 def wave(length=900.0, amplitude=110.0, periods=3.5, x0=40.0, y0=150.0):
@@ -35,7 +38,7 @@ def reversing_planner(images, **kwargs):
 def test_stroke_crossing_tile_borders_stays_one_polyline(planner, light):
     line = wave()
     img = photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
-    result = tiling.plan_image(img, planner=planner, progress=False)
+    result = tiling.plan_image(img, planner=planner, min_gap=ACROSS_TILES, progress=False)
     cols = {round(t.transform.offset[0]) for t in result.tiles}
     rows = {round(t.transform.offset[1]) for t in result.tiles}
     assert len(cols) >= 4 and len(rows) >= 2  # the stroke crosses vertical and horizontal borders
@@ -173,7 +176,9 @@ def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():
 
     line = wave()
     img = photo_like([line], (300, 980), width=6, noise=0.04)
-    result = tiling.plan_image(img, planner=forgetful, batch_size=4, progress=False)
+    result = tiling.plan_image(
+        img, planner=forgetful, batch_size=4, min_gap=ACROSS_TILES, progress=False
+    )
     n = len(result.tiles)
     assert all(s[1:] == (100, 100) and s[0] in (1, 2, 4) and d == np.dtype(bool) for s, d in calls)
     assert sum(min(4, n - 4 * i) for i in range(len(calls))) == n
@@ -193,7 +198,7 @@ def test_trained_planner_draws_a_line_across_tiles_in_one_motion(light):
     """
     line = wave()
     img = photo_like([line], (300, 980), width=6, light_ink=light, gradient=0.6, noise=0.08)
-    result = tiling.plan_image(img, progress=False)
+    result = tiling.plan_image(img, min_gap=ACROSS_TILES, progress=False)
     assert len(result.tiles) >= 8
     assert result.border_joins >= len(result.tiles) - 1 and result.border_breaks == 0
     assert len(result.strokes) == 1, len(result.strokes)

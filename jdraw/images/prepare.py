@@ -10,10 +10,11 @@ polylines onto a canvas at a freely chosen scale.
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import numpy as np
 
-from jdraw.images import morph
+from jdraw.images import gaps, morph
 from jdraw.images.ink import binarize, denoise, ink_distance, stroke_width
 from jdraw.images.load import BlankImageError, to_gray
 from jdraw.images.skeleton import extend_ends, prune_spurs, simplify, skeleton_polylines
@@ -30,6 +31,8 @@ class Prepared:
       polylines: skeleton chains, ``[n, 2]`` float (x, y), lightly simplified.
       width: typical stroke width, pixels.
       polarity: ``"dark"`` or ``"light"`` ink.
+      gap: how close its separate lines come, centreline to centreline, pixels
+        (:func:`jdraw.images.gaps.line_gap`; measured when first asked for).
     """
 
     shape: tuple[int, int]
@@ -38,6 +41,10 @@ class Prepared:
     polylines: list[np.ndarray]
     width: float
     polarity: str
+
+    @functools.cached_property
+    def gap(self) -> float:
+        return gaps.line_gap(self.ink, self.skeleton, self.width)
 
 
 def prepare(image: np.ndarray, *, polarity: str = "auto") -> Prepared:

@@ -50,17 +50,24 @@ def choose_scale(prep: Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
 
     Centrelines of strokes that do not touch are at least a stroke width
     apart; at ``min_gap / width`` canvas pixels per input pixel they stay
-    ``min_gap`` pixels apart, so they do not merge on the canvas. A drawing
-    whose ink fits the character extent at ``FIT_SLACK`` of that scale or
-    larger is fitted to one canvas like a character (lines then stay at least
-    ``FIT_SLACK * min_gap`` apart, as in KanjiVG's densest characters), so the
-    model orders all its strokes; otherwise it is tiled at that scale (never
-    enlarged, since thin lines are already separable).
+    ``min_gap`` pixels apart. A drawing whose ink fits the character extent at
+    ``FIT_SLACK`` of that scale or larger is fitted to one canvas like a
+    character (lines then stay at least ``FIT_SLACK * min_gap`` apart, as in
+    KanjiVG's densest characters), so the model orders all its strokes.
+
+    Otherwise it is tiled, and drawn as small as its lines allow: they come no
+    closer than ``prep.gap`` (:func:`jdraw.images.gaps.line_gap`, one to four
+    stroke widths), so at ``min_gap / gap`` they still stay ``min_gap`` apart,
+    and a handwritten word's letters come out about as large as the planner's
+    training characters and fragments (until 2026-12-04 a tiled drawing was
+    drawn at ``min_gap / width``, its cursive letters most of a canvas high).
+    Never enlarged, since thin lines are already separable.
     """
-    s_min = min(1.0, min_gap / prep.width)
     x0, y0, x1, y1 = ink_bbox(prep.polylines)
     s_fit = CHAR_EXTENT / max(x1 - x0, y1 - y0, 1.0)
-    return (s_fit, True) if s_fit >= FIT_SLACK * s_min else (s_min, False)
+    if s_fit >= FIT_SLACK * min(1.0, min_gap / prep.width):
+        return s_fit, True
+    return min(1.0, min_gap / prep.gap), False
 
 
 def text_lines(

@@ -1,0 +1,56 @@
+"""jdraw.images.gaps: how close a drawing's separate lines come, and the scale it sets."""
+
+import cv2
+import numpy as np
+
+from jdraw.images.prepare import prepare
+from jdraw.tiling import layout
+
+PEN = 5  # px, OpenCV thickness
+TOL = 2.0  # px, centreline distances measured on a thinned, binarised drawing
+
+
+def drawn(*polylines, shape=(200, 400), closed=False) -> np.ndarray:
+    img = np.full(shape, 255, np.uint8)
+    for p in polylines:
+        q = np.round(np.asarray(p, float)).astype(np.int32).reshape(-1, 1, 2)
+        cv2.polylines(img, [q], closed, 0, PEN, cv2.LINE_8)
+    return img
+
+
+def test_two_lines_keep_the_distance_between_them():
+    for d in (12, 16):
+        prep = prepare(drawn([(20, 60), (380, 60)], [(20, 60 + d), (380, 60 + d)]))
+        assert abs(prep.gap - d) <= TOL, (d, prep.gap, prep.width)
+
+
+def test_a_lone_line_and_a_junction_set_no_gap():
+    """Nothing comes close: the gap is the largest looked for, four stroke widths."""
+    line = prepare(drawn([(20, 100), (380, 120)]))
+    assert line.gap == 4 * line.width
+    # Arms meeting at 60 degrees are close only at their apex, which is not a gap.
+    vee = prepare(drawn([(60, 20), (200, 180), (340, 20)]))
+    assert vee.gap == 4 * vee.width
+
+
+def test_a_round_loop_keeps_its_width():
+    r = 7  # centreline radius: the loop's sides are 2 r apart
+    prep = prepare(
+        drawn(
+            *[[(200 + r * np.cos(t), 100 + r * np.sin(t)) for t in np.linspace(0, 2 * np.pi, 60)]],
+            [(20, 100), (193, 100)],
+        )
+    )
+    assert abs(prep.gap - 2 * r) <= TOL, (prep.gap, prep.width)
+
+
+def test_a_tiled_drawing_is_drawn_at_min_gap_over_its_gap():
+    wave = [(20 + x, 100 + 60 * np.sin(x / 40)) for x in np.linspace(0, 1500, 400)]
+    prep = prepare(drawn(wave, shape=(200, 1560)))
+    scale, single = layout.choose_scale(prep, 4.0)
+    assert not single
+    assert np.isclose(scale, 4.0 / prep.gap) and scale < 4.0 / prep.width
+    # A character-sized drawing is still fitted to one canvas as before.
+    small = prepare(drawn([(20, 20), (90, 20), (90, 90)], shape=(120, 120)))
+    scale, single = layout.choose_scale(small, 4.0)
+    assert single and np.isclose(scale, layout.CHAR_EXTENT / 70, rtol=0.1)

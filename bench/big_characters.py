@@ -63,7 +63,7 @@ def main() -> None:
             img, strokes = drawing(ks, int(i), size, pen)
             plan = plan_image(img, polarity="dark", progress=False)
             per.append(words.score_word(img < 128, strokes, plan.strokes, tol=max(2, pen // 2)))
-        m = {k: float(np.nanmean([p[k] for p in per])) for k in per[0] if k != "word"}
+        m = {k: float(np.nanmean([p[k] for p in per])) for k in per[0]}
         print(
             f"| {size} / {pen} | {len(per)} | {m['stroke_ratio']:.3f} | {m['stroke_acc']:.3f} | "
             f"{m['order_all_pairs']:.3f} | {m['direction']:.3f} | {time.perf_counter() - t0:.0f} |",

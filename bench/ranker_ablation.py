@@ -1,7 +1,7 @@
 """What each change to the stroke ranker buys: width, the drawing's context, other scripts.
 
   PYTHONPATH=. python bench/ranker_ablation.py [--workdir runs/ranker_ablation]
-      [--fits kanji64,mix64,mix128,ctx128] [--seeds 0,1] [--splits val]
+      [--fits kanji64,mix64,mix128,ctx128] [--seeds 0,1] [--splits val] [--arabic 8]
 
 Traces the default ranker config's examples once (``configs/default.py``'s
 ``ranker`` stage, the bundled default as tracer: KanjiVG's 600 traced and 2,500
@@ -15,8 +15,16 @@ planning, so a ranker's figures here equal its ``eval.py`` figures for the same
 strokes. Choose by the KanjiVG val split; the Latin dev split is only reported.
 
 Fits: ``kanji64`` (KanjiVG only, 64 wide, no context: the ranker before
-2026-12-04), ``kanji128``, ``mix64`` and ``mix128`` (all sets, no context),
-``ctx64`` and ``ctx128`` (all sets, with the drawing's context: the default).
+2026-12-04), ``kanji128``, ``mix64`` and ``mix128`` (KanjiVG, Latin letters and
+cursive, no context), ``ctx64`` and ``ctx128`` (the same sets, with the drawing's
+context: the default); ``words128`` adds 1,000 printed Latin words
+(:func:`jdraw.data.latin.words`), ``heads128`` gives cursive 15% and Latin letters
+10% of every batch's headings (``heading_shares``), ``wheads128`` both.
+
+``--arabic N``: also plan our Arabic words (``bench/rtl_words.py``, N words a
+font, the right-to-left hint) with each ranker in a copy of the default bundle,
+and report the share whose first stroke starts in the rightmost letter and the
+rank correlation of stroke order with x.
 """
 
 from __future__ import annotations
@@ -36,14 +44,38 @@ from jdraw.model import bundle
 from jdraw.planner import ranker
 from jdraw.train import ranker as ranker_train
 
-FITS = {  # name: (sets, hidden, context)
-    "kanji64": (("kanji",), 64, False),
-    "kanji128": (("kanji",), 128, False),
-    "mix64": (("kanji", "latin", "cursive"), 64, False),
-    "mix128": (("kanji", "latin", "cursive"), 128, False),
-    "ctx64": (("kanji", "latin", "cursive"), 64, True),
-    "ctx128": (("kanji", "latin", "cursive"), 128, True),
+MIX = ("kanji", "latin", "cursive")
+HEADS = {"cursive": 0.15, "latin": 0.1}  # heads128's shares of a batch's headings
+FITS = {  # name: (sets, hidden, context, heading shares)
+    "kanji64": (("kanji",), 64, False, None),
+    "kanji128": (("kanji",), 128, False, None),
+    "mix64": (MIX, 64, False, None),
+    "mix128": (MIX, 128, False, None),
+    "ctx64": (MIX, 64, True, None),
+    "ctx128": (MIX, 128, True, None),
+    "words128": ((*MIX, "latin_words"), 128, True, None),
+    "heads128": (MIX, 128, True, HEADS),
+    "wheads128": ((*MIX, "latin_words"), 128, True, HEADS),
 }
+
+
+def arabic(model, work: pathlib.Path, words: int, tag: str) -> list:
+    """``[first, rho]`` of Arabic words planned right to left with ``model`` as the ranker
+    (in a copy of the default bundle, ``work/bundle_<tag>``: bundles are cached by folder)."""
+    import shutil
+    import sys
+
+    import numpy as np
+
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    import rtl_words
+
+    b = work / f"bundle_{tag}"
+    shutil.rmtree(b, ignore_errors=True)
+    shutil.copytree(bundle.DEFAULT_BUNDLE, b)
+    ranker.save(model, b)
+    r = rtl_words.measure("arabic", words, np.random.default_rng(0), "rtl", str(b))
+    return [round(r["first"], 3), round(r["rho"], 3)]
 
 
 def plans(work: pathlib.Path, splits) -> dict:
@@ -74,10 +106,13 @@ def main(argv=None) -> None:
     p.add_argument("--fits", default=",".join(FITS))
     p.add_argument("--seeds", default="0,1")
     p.add_argument("--splits", default="val", help="KanjiVG splits to score (val, test)")
+    p.add_argument("--arabic", type=int, default=0, help="Arabic words per font (0: none)")
     a = p.parse_args(argv)
     work = pathlib.Path(a.workdir)
     cfg = default.ranker()
     cfg.tracer, cfg.out = str(bundle.DEFAULT_BUNDLE), str(work / "out")
+    if any("latin_words" in FITS[f][0] for f in a.fits.split(",")):
+        cfg.extra = dict(cfg.extra, latin_words=1000)
     paths = ranker_train.make_examples(cfg, work)
     names = [j[0] for j in ranker_train.chunk_jobs(cfg)]
     groups = ranker_train.set_groups(paths, names)[0]
@@ -85,9 +120,13 @@ def main(argv=None) -> None:
     sets = plans(work, a.splits.split(","))
     rows = {}
     for fit in a.fits.split(","):
-        kinds, hidden, context = FITS[fit]
+        kinds, hidden, context, heads = FITS[fit]
         keep = [i for i, n in enumerate(names) if n in kinds]
-        sub = ranker_train.load_examples([paths[i] for i in keep], context=True)
+        kept = [paths[i] for i in keep]
+        sub = ranker_train.load_examples(kept, context=True)
+        draw = None
+        if heads:
+            draw = ranker_train.heading_shares(kept, [names[i] for i in keep], heads)
         for seed in (int(s) for s in a.seeds.split(",")):
             model, _ = ranker_train.train_ranker(
                 sub,
@@ -97,11 +136,14 @@ def main(argv=None) -> None:
                 seed=seed,
                 context=context,
                 hidden=hidden,
+                heading_draw=draw,
             )
             row = {}
             for name, (demos, inputs, plan) in sets.items():
                 r = metrics.score(demos, ranker.reorder(plan, "ranker", model), inputs)
                 row[name] = [round(r["order_all_pairs"], 4), round(r["direction_agreement"], 4)]
+            if a.arabic:
+                row["arabic rtl: first, rho"] = arabic(model, work, a.arabic, f"{fit}_{seed}")
             rows[f"{fit} seed {seed}"] = row
             print(f"{fit} seed {seed}: order over all pairs, direction:", json.dumps(row))
     (work / "results.json").write_text(json.dumps(rows, indent=1) + "\n")

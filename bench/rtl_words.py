@@ -1,6 +1,7 @@
 """Right-to-left words through ``jdraw.plan_image``: where the plan starts and which way it runs.
 
   python bench/rtl_words.py [--words 8] [--detector-words 12] [--seed 0] [--detector DIR]
+      [--checkpoint BUNDLE] [--only hebrew,arabic,latin] [--directions auto,rtl,ltr]
 
 Hebrew and Arabic words of our own (jdraw.data.fonts.WORDS) are set in the
 fonts the reading-direction detector never saw (jdraw.data.fonts.DETECTOR_EVAL),
@@ -38,7 +39,13 @@ from jdraw.tiling.plan_image import plan_image
 MARGIN = 8  # px of white around a rendered word (fonts.render_word's default)
 
 
-def measure(script: str, words: int, rng: np.random.Generator, direction: str | None) -> dict:
+def measure(
+    script: str,
+    words: int,
+    rng: np.random.Generator,
+    direction: str | None,
+    checkpoint: str | None = None,
+) -> dict:
     first = rho = read = 0.0
     n = n_rho = 0
     k = 0
@@ -51,7 +58,7 @@ def measure(script: str, words: int, rng: np.random.Generator, direction: str | 
             height = int(rng.integers(60, 201))
             rtl = script in F.RTL_SCRIPTS
             img = F.render_word(text, font, height, direction="rtl" if rtl else "ltr")
-            plan = plan_image(img, progress=False, direction=direction)
+            plan = plan_image(img, progress=False, direction=direction, checkpoint=checkpoint)
             read += plan.direction == "rtl"
             xs = [float(s[:, 0].mean()) for s in plan.strokes]
             if len(xs) >= 3:
@@ -71,9 +78,15 @@ def measure(script: str, words: int, rng: np.random.Generator, direction: str | 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--words", type=int, default=8, help="words per font")
-    ap.add_argument("--detector-words", type=int, default=12, help="random drawings per font")
+    ap.add_argument(
+        "--detector-words",
+        type=int,
+        default=12,
+        help="random drawings per font (0: no detector table)",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--detector", help="folder of another direction.json/.npz (default: bundled)")
+    ap.add_argument("--checkpoint", help="planner bundle (default: the bundled default)")
     ap.add_argument("--only", default="hebrew,arabic,latin", help="scripts of the first table")
     ap.add_argument("--directions", default="auto,rtl,ltr", help="settings of the first table")
     args = ap.parse_args()
@@ -87,13 +100,16 @@ def main() -> None:
     t0 = time.perf_counter()
     for script in args.only.split(","):
         for direction in [None if d == "auto" else d for d in args.directions.split(",")]:
-            r = measure(script, args.words, np.random.default_rng(args.seed), direction)
+            rng = np.random.default_rng(args.seed)
+            r = measure(script, args.words, rng, direction, args.checkpoint)
             print(
                 f"| {script} | {direction or 'auto'} | {r['words']} | {r['read_rtl']:.2f} | "
                 f"{r['first']:.2f} | {r['rho']:+.2f} |",
                 flush=True,
             )
     print(f"\n({time.perf_counter() - t0:.0f} s)\n")
+    if args.detector_words <= 0:
+        return
 
     import sys
 

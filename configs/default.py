@@ -22,27 +22,31 @@ Writes runs/default/bundle, laid out as jdraw/checkpoints/default, which
    drawn the same five ways, 1,500 Latin letters and 2,000 cursive fragments
    (jdraw.data.mix); two small MLPs, each corner and end pair also given the
    drawing's context, learn where a drawn stroke should be cut and which
-   stroke ends are one stroke, also ends up to 8 px apart linked through the
-   ink (jdraw.train.splitter, jdraw.planner.splits).
+   stroke ends are one stroke, also ends up to 16 px apart linked through the
+   ink, back over a line drawn already (jdraw.train.splitter, jdraw.planner.splits).
 4. ``ranker``: the tracer plans 600 more characters (and 2,500 give KanjiVG's
-   own strokes), 2,000 Latin letters and 400 cursive fragments
-   (jdraw.data.mix); the ranker (128 wide, each pair and stroke also given the
-   drawing's context) learns the writers' order and direction of its strokes
-   (jdraw.train.ranker, jdraw.planner.ranker). Made alone by the
+   own strokes), 2,000 Latin letters, 400 cursive fragments and 1,000 printed
+   words of Latin letters (jdraw.data.mix); the ranker (128 wide, each pair and
+   stroke also given the drawing's context; cursive 15% and Latin letters 10%
+   of every batch's heading examples) learns the writers' order and direction
+   of its strokes (jdraw.train.ranker, jdraw.planner.ranker). Made alone by the
    ``ranker_only`` variant, with stages 1 and 2 as bundled.
 
 A string ``"stage:NAME"`` in a stage's config is ``WORKDIR/NAME/bundle``.
 These are the configs the bundled default was trained with, flattened (stages
 1 and 2 were configs/lean.py and lean_start.py; stages 3 and 4 were made on
-2026-12-04 with stages 1 and 2 as bundled (copied in as ``retrace`` says): the
-splitter by ``python train.py --config configs/default.py:context --workdir runs/ctx8
---config.stages.splitter.reach=8``, whose splitter stage is this one, the ranker by
-``ranker_only``; the bundle's json files keep the configs, and
-tests/test_pipeline.py compares them with these).
+2026-12-05 with stages 1 and 2 as bundled, copied in as ``retrace`` says, by
+``python train.py --config configs/default.py --workdir runs/default16``; the
+bundle's json files keep the configs, and tests/test_pipeline.py compares them
+with these). Result (docs/scripts.md, results/beyond_default_reach16.json):
+KanjiVG test split stroke accuracy 0.9877, order over all pairs 0.9584,
+direction 0.9974; Latin dev glyphs 0.885 / 0.905 / 0.905; 40 cursive val words
+1.94 drawn strokes per written one.
 
-Wall time on the 2-core CPU: about 57 min, the sum of the stages' recorded
-times (training loops 2,105 s and 298 s, tracing and fits 868 s and 137 s; the
-bundle's json files), not one fresh run of this command; loading,
+Wall time on the 2-core CPU: about 55 min, the sum of the stages' recorded
+times (training loops 2,105 s and 298 s; the bundle's json files), the splitter's
+tracing (10.4 min, two processes sharing its chunks) and the ranker's (2 min 45 s),
+not one fresh run of this command; loading,
 compiling and validation add a few minutes. The tiny variant: 2 min 20 s and
 2 min 39 s in two runs on the CPU shared with other jobs; its bundle plans, badly.
 Result: README.md ("Beyond the paper") and docs/results.md.
@@ -127,7 +131,7 @@ def splitter() -> ml_collections.ConfigDict:
     c.extra = dict(latin=1500, cursive=2000)  # jdraw.data.mix: school letters, cursive
     c.patches = False  # the nets see each corner's and join's geometry only
     c.context = True  # ... and the drawing's context (jdraw.planner.stroke_tokens.context)
-    c.reach = 8  # pixels: ends linked through the ink (jdraw.planner.joins.REACH)
+    c.reach = 16  # pixels: ends linked through the ink (back over a drawn line, as cursive is)
     c.hidden = 64
     c.steps = 3000
     c.batch = 512
@@ -144,7 +148,9 @@ def ranker() -> ml_collections.ConfigDict:
     c.out = "stage:ranker"
     c.chars = 600
     c.demo_chars = 2500
-    c.extra = dict(latin=2000, cursive=400)  # jdraw.data.mix: school letters, cursive
+    # jdraw.data.mix: school letters, cursive, and printed words of school letters
+    c.extra = dict(latin=2000, cursive=400, latin_words=1000)
+    c.heading_shares = dict(cursive=0.15, latin=0.1)  # of every batch's heading examples
     c.chunk = 100
     c.augment = 1.0
     c.styles = dict(STYLES)
@@ -175,9 +181,10 @@ def ranker_only() -> ml_collections.ConfigDict:
 
 
 def splitter_before(s: ml_collections.ConfigDict, extra=None) -> ml_collections.ConfigDict:
-    """The splitter stage as it was before 2026-12-04 (no context, ``extra`` sets only),
-    with which the variants below were measured."""
+    """The splitter stage as it was before 2026-12-04 (no context, ``extra`` sets only,
+    reach 8), with which the variants below were measured."""
     s.context = False
+    s.reach = 8
     if extra:
         s.extra = dict(extra)
     else:
@@ -189,6 +196,7 @@ def ranker_before(r: ml_collections.ConfigDict, extra=None) -> ml_collections.Co
     """The ranker stage as it was before 2026-12-04 (64 wide, no context, ``extra`` sets
     only), with which the variants below were measured."""
     r.update(hidden=64, context=False)
+    del r["heading_shares"]
     if extra:
         r.extra = dict(extra)
     else:
@@ -356,7 +364,9 @@ def context(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     c = retrace(c)
     c.name = "default_context"
     c.stages.splitter.context = True
-    c.stages.ranker = ranker()  # today's default ranker config
+    c.stages.ranker = ranker()  # the default's ranker config of 2026-12-04:
+    c.stages.ranker.extra = dict(latin=2000, cursive=400)  # no printed words,
+    del c.stages.ranker["heading_shares"]  # headings drawn as the sets come
     c.stages.ranker.tracer_split = "stage:splitter"
     return c
 

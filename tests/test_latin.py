@@ -95,3 +95,26 @@ def test_extra_sets_leave_kanjivg_chunks_as_they_were(kanji_set):
     a, _ = ranker_train.traced_chunk(cfg, ks, lpool, "demo", 0, salt=mix.salt("latin"))
     b, _ = ranker_train.traced_chunk(cfg, ks, lpool, "demo", 0)
     assert any(not np.array_equal(x.target, y.target) for x, y in zip(a, b))
+
+
+def test_printed_words_are_training_glyphs_written_one_after_another_left_to_right():
+    from jdraw.data import demos as D
+
+    ks = latin.words("train", n=30, seed=3)
+    assert len(ks) == 30 and ks.names.tolist() == latin.words("train", n=30, seed=3).names.tolist()
+    train = set(latin.names("train"))
+    for i in range(len(ks)):
+        text = [chr(int(c, 16)) for c in str(ks.names[i]).split("-")[2:]]
+        assert 2 <= len(text) <= 4 and set(text) <= train  # never a dev glyph
+        strokes = D.sample(ks, i).strokes
+        assert len(strokes) == sum(len(latin.GLYPHS[g]) for g in text)
+        pts = np.concatenate([np.asarray(s, float) for s in strokes])
+        assert pts.min() >= 0 and pts.max() <= 99
+        # each glyph's strokes lie left of the next glyph's (the words are laid out with gaps)
+        at, right = 0, -np.inf
+        for g in text:
+            own = np.concatenate(
+                [np.asarray(s, float) for s in strokes[at : at + len(latin.GLYPHS[g])]]
+            )
+            assert own[:, 0].min() > right
+            right, at = own[:, 0].max(), at + len(latin.GLYPHS[g])

@@ -1,6 +1,7 @@
 """The stroke ranker: exact pixels after reordering, antisymmetric scores, and it learns."""
 
 import numpy as np
+import pytest
 from flax import nnx
 
 import jdraw
@@ -211,3 +212,44 @@ def test_examples_made_before_the_context_train_a_ranker_without_it_only(rng, tm
 
     with pytest.raises(ValueError, match="context; delete them"):
         ranker_train.load_examples([old], context=True)
+
+
+def test_shares_of_gives_each_named_set_its_share_and_the_rest_by_size():
+    groups = np.array(["kanji"] * 90 + ["latin"] * 6 + ["cursive"] * 4)
+    index, p = ranker_train.shares_of(groups, {"cursive": 0.5})
+    assert [("cursive", "kanji", "latin")[i] for i in index[[0, 90, 96]]] == [
+        "kanji",
+        "latin",
+        "cursive",
+    ]
+    np.testing.assert_allclose(p, [0.5, 0.5 * 90 / 96, 0.5 * 6 / 96], atol=1e-12)
+    # A set the config trains on that gave no examples is left out, the rest scaled up.
+    _, p = ranker_train.shares_of(
+        groups[:96], {"cursive": 0.5}, known=("kanji", "latin", "cursive")
+    )
+    np.testing.assert_allclose(p, [90 / 96, 6 / 96], atol=1e-12)
+    with pytest.raises(ValueError, match="not trained on"):
+        ranker_train.shares_of(groups, {"hebrew": 0.1})
+    with pytest.raises(ValueError, match="summing to <= 1"):
+        ranker_train.shares_of(groups, {"latin": 0.7, "cursive": 0.6})
+
+
+def test_heading_shares_decide_whose_rule_a_ranker_learns(rng):
+    # Two sets whose strokes look the same but are drawn opposite ways: the set that
+    # fills more of every batch decides which way the ranker heads such a stroke.
+    F, P, C = ranker.STROKE_FEATURES, ranker.PAIR_FEATURES, ranker.CONTEXT_FEATURES
+    one = lambda k: np.tile(rng.normal(size=(1, k)).astype(np.float32), (100, 1))  # noqa: E731
+    f, rf, ch = one(F), one(F), one(C)
+    lab = np.r_[np.ones(90), np.zeros(10)].astype(np.float32)  # 90 one way, 10 the other
+    x_ab, cp = rng.normal(size=(16, P)).astype(np.float32), np.zeros((16, C), np.float32)
+    data = (x_ab, x_ab[::-1], f, rf, lab, cp, ch)
+    groups = np.r_[np.zeros(90), np.ones(10)].astype(int)
+
+    def heading(draw):
+        kw = dict(steps=150, batch=64, hidden=8, context=True)
+        model, _ = ranker_train.train_ranker(data, heading_draw=draw, **kw)
+        x, rx = np.concatenate([f[:1], ch[:1]], -1), np.concatenate([rf[:1], ch[:1]], -1)
+        return float(model.heading(x, rx)[0])
+
+    assert heading(None) > 0  # drawn uniformly: the larger set's way
+    assert heading((groups, np.array([0.1, 0.9]))) < 0  # the smaller set fills the batches

@@ -168,12 +168,18 @@ def test_retrace_variant_changes_only_the_splitters_reach_and_sets():
         assert len(pool) > 0
 
 
-def test_context_variant_is_retraces_splitter_reading_the_context_and_the_default_ranker():
+def test_context_variant_is_retraces_splitter_reading_the_context_and_the_1204_ranker():
     from configs import default
 
     base, c = default.get_config().to_dict(), default.get_config("context").to_dict()
     retrace = default.get_config("retrace").to_dict()
     assert c["stages"]["splitter"] == {**retrace["stages"]["splitter"], "context": True}
-    assert c["stages"]["ranker"] == {**base["stages"]["ranker"], "tracer_split": "stage:splitter"}
+    # the default's ranker as it was on 2026-12-04: no printed words, no heading shares
+    before = {k: v for k, v in base["stages"]["ranker"].items() if k != "heading_shares"}
+    before["extra"] = {"latin": 2000, "cursive": 400}
+    assert c["stages"]["ranker"] == {**before, "tracer_split": "stage:splitter"}
     assert base["stages"]["ranker"]["context"] and base["stages"]["splitter"]["context"]
-    assert base["stages"]["splitter"]["reach"] == 8
+    assert (
+        base["stages"]["splitter"]["reach"] == 16 and retrace["stages"]["splitter"]["reach"] == 32
+    )
+    assert default.get_config("mix").stages.splitter.reach == 8  # as the variants were measured

@@ -238,6 +238,35 @@ def names(split: str) -> list[str]:
     raise ValueError(f"unknown Latin split {split!r}; expected 'train' or 'dev'")
 
 
+def words(split: str = "train", n: int = 2000, seed: int = 0) -> KanjiSet:
+    """``n`` printed words of 2-4 glyphs of ``split``, each written glyph by glyph, left to right.
+
+    A word is its glyphs side by side on one baseline (a gap of 0.1-0.4 of the
+    cap height between them, lower case sitting on the same baseline as capitals
+    and digits), every glyph's strokes in the table's order and direction, and
+    the glyphs in reading order: the demonstration that a line of separate
+    letters is drawn letter after letter, which no single glyph shows. Fitted
+    to the canvas as :func:`load`'s glyphs are (the longer side 80 px). Names
+    are ``latin-word-<glyphs' code points>``; codes are the first glyph's.
+    """
+    chosen = names(split)
+    rng = np.random.default_rng([seed, 11])
+    out_names, codes, chars = [], [], []
+    for _ in range(n):
+        text = [chosen[k] for k in rng.integers(len(chosen), size=int(rng.integers(2, 5)))]
+        x, strokes = 0.0, []
+        for g in text:
+            parts = [np.asarray(p, np.float64) for p in GLYPHS[g]]
+            lo = min(float(p[:, 0].min()) for p in parts)
+            hi = max(float(p[:, 0].max()) for p in parts)
+            strokes += [p + (x - lo, 0.0) for p in parts]
+            x += hi - lo + float(rng.uniform(0.1, 0.4))
+        out_names.append("latin-word-" + "-".join(f"{ord(g):04x}" for g in text))
+        codes.append(ord(text[0]))
+        chars.append([_cubics(p) for p in to_canvas(strokes)])
+    return KanjiSet.from_strokes(out_names, codes, chars)
+
+
 def load(split: str | None = None) -> KanjiSet:
     """The glyphs (all, or a split's) as a :class:`KanjiSet` in the 100 x 100 canvas."""
     chosen = sorted(GLYPHS) if split is None else names(split)

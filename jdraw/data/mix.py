@@ -2,7 +2,8 @@
 
 For the tracer-trained parts (splitter, ranker), a config's ``extra`` maps a
 set's name to how many augmented examples of it to trace beside the KanjiVG
-characters, e.g. ``{"latin": 1500}``. For the model stages (local and start
+characters, e.g. ``{"latin": 1500}`` (``latin_words``: rows of Latin glyphs,
+:func:`jdraw.data.latin.words`). For the model stages (local and start
 models), ``data.extra`` maps a set's name to the share of characters drawn
 from it (:class:`Mixture`; KanjiVG takes the rest). Each set is a
 :class:`jdraw.data.kanji.KanjiSet` with the pool of indices to draw from, so
@@ -29,6 +30,11 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
 
         ks = latin.load("train")
         return ks, np.arange(len(ks))
+    if name == "latin_words":
+        from jdraw.data import latin
+
+        ks = latin.words("train")
+        return ks, np.arange(len(ks))
     if name == "cursive":
         from jdraw.data import cursive
 
@@ -40,7 +46,8 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
         ks = scribbles.load()
         return ks, np.arange(len(ks))
     raise ValueError(
-        f"unknown training set {name!r}; expected 'kanji', 'latin', 'cursive' or 'scribble'"
+        f"unknown training set {name!r}; "
+        "expected 'kanji', 'latin', 'latin_words', 'cursive' or 'scribble'"
     )
 
 

@@ -88,10 +88,14 @@ def train_ranker(
     seed: int = 0,
     context: bool = False,
     hidden: int = 64,
+    heading_draw=None,
 ):
     """Fits a :class:`Ranker` on stacked :func:`examples` (numpy arrays); returns it and logs.
 
     ``context``: the ranker also sees each drawing's context (``data``'s last two arrays).
+    ``heading_draw``: ``(groups [H] int, p [G] float)``, each heading's set and
+    each set's share of a batch's headings (:func:`heading_shares`); ``None``:
+    headings drawn uniformly, as pairs always are.
     """
     x_ab, x_ba, f, rf, lab = data[:5]
     if context:
@@ -123,10 +127,17 @@ def train_ranker(
         return optax.apply_updates(params, upd), opt, loss, accs
 
     rng = np.random.default_rng(seed)
+    if heading_draw is not None:
+        groups, share = heading_draw
+        members = [np.flatnonzero(groups == g) for g in range(len(share))]
     logs = []
     for s in range(steps):
         pi = rng.integers(len(x_ab), size=batch)
-        hi = rng.integers(len(f), size=batch)
+        if heading_draw is None:
+            hi = rng.integers(len(f), size=batch)
+        else:
+            counts = rng.multinomial(batch, share)
+            hi = np.concatenate([m[rng.integers(len(m), size=c)] for m, c in zip(members, counts)])
         # Show each pair in both orders: the net learns an antisymmetric score.
         params, opt, loss, accs = step(params, opt, x_ab[pi], x_ba[pi], f[hi], rf[hi], lab[hi])
         if s % 500 == 0 or s == steps - 1:
@@ -269,6 +280,39 @@ def set_groups(paths, names) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(pg), np.asarray(hg)
 
 
+def shares_of(groups: np.ndarray, shares, known=None) -> tuple[np.ndarray, np.ndarray]:
+    """``(index [N] int, p [G] float)``: each example's set (``groups [N]``, names) as
+    an index into the sorted names of the sets present, and each set's share of a batch.
+
+    ``shares`` maps a set's name to its share; the sets it leaves out share the
+    rest by their number of examples. A set it names must be one of ``known``
+    (the config's sets; default: those present); one that is known but gave no
+    examples (a tracer too poor to match any stroke) is left out and the
+    shares of the rest scaled up.
+    """
+    sets = sorted(set(groups.tolist()))
+    known = set(sets) if known is None else set(known)
+    unknown = set(shares) - known
+    if unknown:
+        raise ValueError(f"shares name sets that are not trained on: {sorted(unknown)}")
+    fixed = {k: float(v) for k, v in dict(shares).items()}
+    if sum(fixed.values()) > 1 or any(v < 0 for v in fixed.values()):
+        raise ValueError(f"shares {fixed}: each >= 0, summing to <= 1")
+    rest = 1.0 - sum(fixed.values())
+    free = [k for k in sets if k not in fixed]
+    n_free = sum(int((groups == k).sum()) for k in free)
+    p = np.asarray(
+        [fixed[k] if k in fixed else rest * (groups == k).sum() / max(n_free, 1) for k in sets]
+    )
+    return np.searchsorted(np.asarray(sets), groups), p / p.sum()
+
+
+def heading_shares(paths, names, shares) -> tuple[np.ndarray, np.ndarray]:
+    """``(groups [H], p [G])`` for :func:`train_ranker`'s ``heading_draw``: each heading's
+    set (``names[i]`` for chunk ``paths[i]``) and each set's share (:func:`shares_of`)."""
+    return shares_of(set_groups(paths, names)[1], shares, known=names)
+
+
 def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
     """Stacked :func:`examples` of every chunk; the context arrays too if ``context``."""
     try:
@@ -290,6 +334,10 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     t1 = time.time()
     context = bool(cfg.get("context", False))
     data = load_examples(paths, context)
+    draw = None
+    if cfg.get("heading_shares", None):
+        names = [name for name, _, _ in chunk_jobs(cfg)]
+        draw = heading_shares(paths, names, dict(cfg.heading_shares))
     model, logs = train_ranker(
         data,
         steps=int(cfg.steps),
@@ -298,6 +346,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         seed=int(cfg.seed),
         context=context,
         hidden=int(cfg.get("hidden", 64)),
+        heading_draw=draw,
     )
     t2 = time.time()
     result = {

@@ -5,7 +5,8 @@
 
 Traces the default ranker config's examples once (``configs/default.py``'s
 ``ranker`` stage, the bundled default as tracer: KanjiVG's 600 traced and 2,500
-demonstrated characters, 2,000 Latin letters, 400 cursive fragments; chunks are
+demonstrated characters, 2,000 Latin letters, 400 cursive fragments, 1,000 printed
+words; chunks are
 saved in the workdir, so a second run reuses them), fits one ranker per fit and
 seed, and scores each by reordering the same plans: the bundled default's
 strokes (its tracer and splitter, ``order="model"``) of the KanjiVG ``--splits``
@@ -33,6 +34,10 @@ import argparse
 import json
 import pathlib
 import pickle
+import shutil
+import sys
+
+import numpy as np
 
 from configs import default
 from jdraw.data import demos as D
@@ -43,6 +48,9 @@ from jdraw.evaluation.batched import plan_batched
 from jdraw.model import bundle
 from jdraw.planner import ranker
 from jdraw.train import ranker as ranker_train
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import rtl_words  # noqa: E402 (bench/rtl_words.py, beside this script)
 
 MIX = ("kanji", "latin", "cursive")
 HEADS = {"cursive": 0.15, "latin": 0.1}  # heads128's shares of a batch's headings
@@ -62,14 +70,6 @@ FITS = {  # name: (sets, hidden, context, heading shares)
 def arabic(model, work: pathlib.Path, words: int, tag: str) -> list:
     """``[first, rho]`` of Arabic words planned right to left with ``model`` as the ranker
     (in a copy of the default bundle, ``work/bundle_<tag>``: bundles are cached by folder)."""
-    import shutil
-    import sys
-
-    import numpy as np
-
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-    import rtl_words
-
     b = work / f"bundle_{tag}"
     shutil.rmtree(b, ignore_errors=True)
     shutil.copytree(bundle.DEFAULT_BUNDLE, b)
@@ -111,8 +111,6 @@ def main(argv=None) -> None:
     work = pathlib.Path(a.workdir)
     cfg = default.ranker()
     cfg.tracer, cfg.out = str(bundle.DEFAULT_BUNDLE), str(work / "out")
-    if any("latin_words" in FITS[f][0] for f in a.fits.split(",")):
-        cfg.extra = dict(cfg.extra, latin_words=1000)
     paths = ranker_train.make_examples(cfg, work)
     names = [j[0] for j in ranker_train.chunk_jobs(cfg)]
     groups = ranker_train.set_groups(paths, names)[0]

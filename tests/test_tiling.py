@@ -85,9 +85,13 @@ def test_stitch_joins_across_tiles_before_inside_a_tile():
     assert len(joined) == 2
     np.testing.assert_array_equal(joined[0], np.concatenate([a, b[::-1]]))
     np.testing.assert_array_equal(joined[1], c)
-    # The earliest piece sets the direction even when it is the second in the chain.
+    # The stroke runs the way most of its pixels were planned: a's 5 against b's 4,
+    # even when b is the earliest piece (which set the direction until 2026-12-05).
     joined = stitch([(1, b), (0, a)])
-    np.testing.assert_array_equal(joined[0], np.concatenate([b, a[::-1]]))
+    np.testing.assert_array_equal(joined[0], np.concatenate([a, b[::-1]]))
+    # On a tie the earliest piece's way.
+    joined = stitch([(1, b), (0, a[1:])])
+    np.testing.assert_array_equal(joined[0], np.concatenate([b, a[1:][::-1]]))
 
 
 def line_px(*corners):
@@ -163,6 +167,41 @@ def test_reading_order_lines_then_left_to_right():
         (200, 105, 260, 150),  # line 2, right
     ]
     assert layout._reading_order(boxes) == [2, 3, 0, 1, 4]  # the dot by its centre
+
+
+def test_dots_outnumbering_letter_bodies_stay_marks():
+    # Two joined pieces and four dots (an Arabic word): a median over boxes would be a
+    # dot's height, the dots would count as letters, and the two over the left piece
+    # would make a text line of their own, drawn before everything else.
+    boxes = [
+        (300, 40, 470, 120),  # right piece
+        (10, 30, 250, 160),  # left piece
+        (100, 0, 115, 15),  # two dots over the left piece
+        (125, 0, 140, 15),
+        (150, 170, 165, 185),  # two dots under it
+        (170, 170, 185, 185),
+    ]
+    tall = layout.tall_boxes(np.asarray(boxes, float))
+    assert tall.tolist() == [True, True, False, False, False, False]
+    line_of, spans = layout.text_lines(boxes)
+    assert len(spans) == 1 and set(line_of.tolist()) == {0}
+    assert layout._reading_order(boxes, rtl=True) == [0, 1, 5, 4, 3, 2]
+    assert layout._reading_order(boxes) == [1, 2, 3, 4, 5, 0]
+
+
+def test_an_underline_does_not_make_the_letters_marks():
+    letters = [(10 + 60 * k, 0, 50 + 60 * k, 50) for k in range(5)]
+    underline = (0, 60, 300, 62)
+    assert layout.tall_boxes(np.asarray([*letters, underline], float)).all()
+
+
+def test_a_flat_piece_is_not_a_mark():
+    # A kana drawn large: a wide flat top stroke apart from a tall one (like the two
+    # strokes of katakana a). Under half the tall one's height, but wide: not a mark.
+    boxes = [(0, 0, 70, 28), (20, 10, 50, 80)]
+    assert layout.tall_boxes(np.asarray(boxes, float)).all()
+    dots = [(0, 0, 60, 60), (70, 0, 84, 14)]  # a dot beside a letter
+    assert layout.tall_boxes(np.asarray(dots, float)).tolist() == [True, False]
 
 
 def test_batches_have_fixed_sizes_and_truncated_plans_are_completed():

@@ -70,13 +70,32 @@ def choose_scale(prep: Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
     return min(1.0, min_gap / prep.gap), False
 
 
+def tall_boxes(boxes: np.ndarray) -> np.ndarray:
+    """``bool [n]``: which boxes ``(x0, y0, x1, y1)`` are letter bodies, not marks.
+
+    A mark (a dot, an accent) is small both ways: its width and its height are
+    under half the typical height, the median height with each box counted by
+    its height. A word with more dots than letter bodies (an Arabic word with
+    four dots over two joined pieces, a cursive "mini") measures its bodies,
+    not its dots (a median over boxes would measure a dot, and the dots would
+    make a text line of their own, drawn first). A long flat piece (a kana's
+    top bar, an underline, a t's bar) is never a mark.
+    """
+    heights = boxes[:, 3] - boxes[:, 1] + 1
+    widths = boxes[:, 2] - boxes[:, 0] + 1
+    h = np.sort(heights)
+    cum = np.cumsum(h)
+    typical = h[np.searchsorted(cum, 0.5 * cum[-1])]
+    return np.maximum(heights, widths) >= 0.5 * typical
+
+
 def text_lines(
     boxes: Sequence[tuple[float, float, float, float]],
 ) -> tuple[np.ndarray, list[tuple[float, float]]]:
     """Text lines of ``boxes`` ``(x0, y0, x1, y1)``: each box's line and the lines' spans.
 
-    Tall boxes (at least half the median height) define the lines; a small box
-    (an i's dot, a comma) joins the line whose vertical span is nearest its centre.
+    Tall boxes (:func:`tall_boxes`) define the lines; a small box (an i's dot,
+    a comma) joins the line whose vertical span is nearest its centre.
 
     Returns:
       ``(line_of [n] int, spans)``: lines numbered top to bottom, ``spans[k] = (y0, y1)``.
@@ -85,7 +104,7 @@ def text_lines(
     if not len(b):
         return np.zeros(0, int), []
     heights = b[:, 3] - b[:, 1] + 1
-    tall = heights >= 0.5 * np.median(heights)
+    tall = tall_boxes(b)
     lines: list[list[float]] = []  # [y0, y1]
     for i in np.argsort(b[:, 1]):
         if not tall[i]:
@@ -119,8 +138,7 @@ def _reading_order(
         return []
     b = np.asarray(boxes, np.float64)
     line_of, _ = text_lines(boxes)
-    heights = b[:, 3] - b[:, 1] + 1
-    tall = heights >= 0.5 * np.median(heights)
+    tall = tall_boxes(b)
     centre_x = (b[:, 0] + b[:, 2]) / 2
     centre_y = (b[:, 1] + b[:, 3]) / 2
     sign = -1.0 if rtl else 1.0

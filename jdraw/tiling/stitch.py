@@ -126,7 +126,9 @@ def stitch(
 
     Returns:
       The joined strokes as 8-connected pixel paths, ordered by their earliest
-      piece; a joined stroke runs in the direction of its earliest piece.
+      piece; a joined stroke runs the way most of its pixels were planned
+      (each tile's ranker heads its own piece), its earliest piece's way on a
+      tie.
 
     Two ends are joined when they are at most ``reach`` pixels apart and
 
@@ -207,24 +209,34 @@ def stitch(
 
     used = dict.fromkeys(live, False)
 
-    def follow(seed: int, end: int) -> list[np.ndarray]:
-        """Paths linked on from ``seed``'s ``end``, each turned to lead away from it."""
-        chain, at = [], (seed, end)
+    def follow(seed: int, end: int) -> tuple[list[np.ndarray], int]:
+        """Paths linked on from ``seed``'s ``end``, each turned to lead away from it,
+        and how many of their pixels were planned the other way."""
+        chain, at, against = [], (seed, end), 0
         while at in link:
             s, e = link[at]
             if used[s]:
                 break
             used[s] = True
-            chain.append(paths[s] if e != end else paths[s][::-1])
+            turned = e == end
+            chain.append(paths[s][::-1] if turned else paths[s])
+            against += len(paths[s]) if turned else 0
             at = (s, 1 - e)
-        return chain
+        return chain, against
 
     out = []
     for seed in live:
         if used[seed]:
             continue
         used[seed] = True
-        forward = [paths[seed], *follow(seed, 1)]
-        backward = follow(seed, 0)
-        out.append(geometry.polyline_pixels(np.concatenate(backward[::-1] + forward)))
+        ahead, against_ahead = follow(seed, 1)
+        behind, against_behind = follow(seed, 0)
+        parts = behind[::-1] + [paths[seed], *ahead]
+        joined = geometry.polyline_pixels(np.concatenate(parts))
+        # Each tile's ranker headed its own piece; the stroke runs the way most of
+        # its pixels were planned, the earliest piece's way on a tie.
+        against = against_ahead + against_behind
+        if 2 * against > sum(len(p) for p in parts):
+            joined = joined[::-1]
+        out.append(joined)
     return out

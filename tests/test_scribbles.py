@@ -168,6 +168,17 @@ def test_retrace_variant_changes_only_the_splitters_reach_and_sets():
         assert len(pool) > 0
 
 
+def test_own_retrace_variant_changes_only_the_splitters_retrace_and_join_shares():
+    from configs import default
+
+    base, c = default.get_config().to_dict(), default.get_config("own_retrace").to_dict()
+    for name in ("local", "start", "ranker"):
+        assert c["stages"][name] == base["stages"][name]
+    sp, before = c["stages"]["splitter"], base["stages"]["splitter"]
+    assert (sp.pop("retrace"), before.pop("retrace")) == (40, 0)
+    assert sp.pop("join_shares") == {"latin": 0.1} and sp == before
+
+
 def test_context_variant_is_retraces_splitter_reading_the_context_and_the_1204_ranker():
     from configs import default
 

@@ -127,6 +127,36 @@ def test_a_stroke_that_stops_at_a_dead_end_joins_back_along_its_own_line():
     assert not ink[q[:, 1], q[:, 0]].all()
 
 
+def test_long_links_go_back_over_their_own_line_only(tmp_path):
+    """Beyond ``reach``, two ends are linked (up to ``retrace`` moves) only when the
+    path through the ink goes back over one of the two strokes' own line."""
+    stem = _line(20, 90, 20, 50)  # up a stem to its tip
+    leave = _line(21, 71, 45, 95)  # and away from its middle
+    ink = geometry.render_strokes([stem, leave])
+    pair = (0, True, 1, False)
+    assert joins.end_links([stem, leave], ink, reach=16) == []
+    link = dict(joins.end_links([stem, leave], ink, reach=16, retrace=40))[pair]
+    assert len(link) >= 19 and joins.own_line(link, stem, leave)
+    assert (ink[link[:, 1].astype(int), link[:, 0].astype(int)]).all()
+    # Ends as far apart through the ink, but over a third stroke's line: no link.
+    bar, post = _line(20, 50, 60, 50), _line(60, 51, 60, 90)
+    ink = geometry.render_strokes([stem, post, bar])
+    assert pair in dict(joins.end_links([stem, post, bar], ink, reach=48))
+    assert pair not in dict(joins.end_links([stem, post, bar], ink, reach=16, retrace=48))
+    # A splitter joins with its retrace, which it keeps through a bundle folder.
+    sp = _splitter(-5.0, 5.0)  # joins every candidate
+    sp.reach, sp.retrace = 16, 40
+    splits.save(sp, tmp_path)
+    back = splits.load(tmp_path)
+    assert (back.reach, back.retrace) == (16, 40)
+    ink = geometry.render_strokes([stem, leave])
+    (one,) = splits.join_many(back, [[stem, leave]], [ink])[0]
+    assert len(one) > len(stem) + len(leave)  # part of the stem drawn twice
+    assert {(20, 50), (20, 90)} <= {tuple(q) for q in one} and tuple(one[-1]) == (45, 95)
+    sp.retrace = 0
+    assert len(splits.join_many(sp, [[stem, leave]], [ink])[0]) == 2
+
+
 def test_edit_plan_follows_the_nets_and_inks_the_same_pixels():
     ell, far = _ell(), _line(60, 10, 90, 10)
     a, b = _line(10, 85, 30, 85), _line(31, 85, 60, 85)
@@ -237,6 +267,26 @@ def test_fit_learns_a_rule_both_nets_can_see():
     model, logs = splitter_train.fit((xs, ys, xj, yj), steps=300, batch=128, hidden=16)
     assert logs[-1]["split_acc"] > 0.9 and logs[-1]["join_acc"] > 0.9
     assert model.patches
+
+
+def test_join_shares_decide_which_pairs_a_batch_draws():
+    """A set given all of every batch's pairs is all the join net learns from: here a
+    small set of joins among many non-joins, the same features for both."""
+    from jdraw.train.ranker import shares_of
+
+    rng = np.random.default_rng(0)
+    xs = rng.normal(size=(64, splits.CORNER_FEATURES)).astype(np.float32)
+    xj = rng.normal(size=(400, splits.JOIN_FEATURES)).astype(np.float32)
+    yj = np.zeros(400, np.float32)
+    yj[:20] = 1.0  # the small set: joins
+    groups = np.where(np.arange(400) < 20, "small", "big")
+    data = (xs, (xs[:, 0] > 0).astype(np.float32), xj, yj)
+    kw = dict(steps=150, batch=64, hidden=8, patches=False)
+    plain, _ = splitter_train.fit(data, **kw)
+    drawn, _ = splitter_train.fit(data, join_draw=shares_of(groups, {"small": 1.0}), **kw)
+    x = xj[20:, : splits.join_width(False, joins.REACH)]
+    assert (np.asarray(plain.join_net(x)) < 0).mean() > 0.9  # mostly not joins
+    assert (np.asarray(drawn.join_net(x)) > 0).mean() > 0.9  # never saw a non-join
 
 
 def test_plan_refuses_split_without_a_splitter():

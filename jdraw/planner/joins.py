@@ -267,8 +267,15 @@ def end_pairs(
     return [pair for pair, _ in end_links(strokes, ink, gap, reach)]
 
 
-def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH) -> list:
-    """:func:`end_pairs` with each pair's :func:`bridge`: ``[((i, ie, j, je), points)]``."""
+def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH, retrace: int = 0) -> list:
+    """:func:`end_pairs` with each pair's :func:`bridge`: ``[((i, ie, j, je), points)]``.
+
+    ``retrace``: ends further apart than ``reach``, up to ``retrace`` moves, are
+    linked too when their path goes back over the line of one of the two
+    strokes (:func:`own_line`): a writer runs back down the stem just drawn
+    up, never across another stroke's line to a far one.
+    """
+    far_reach = max(reach, retrace)
     ends = [
         (i, e, (p[-1] if e else p[0]))
         for i, p in enumerate(np.asarray(x, np.float64).reshape(-1, 2) for x in strokes)
@@ -282,16 +289,38 @@ def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH) -> list:
         for b in range(a + 1, len(ends)):
             (i, ie, pa), (j, je, pb) = ends[a], ends[b]
             far = np.abs(pa - pb).max()
-            if i == j or far > max(gap, reach if ink is not None else 0):
+            if i == j or far > max(gap, far_reach if ink is not None else 0):
                 continue
             if far <= gap:
                 link = bridge(pa, pb, ink, gap, reach)
             else:  # as bridge(): the shortest path through the ink of at most reach moves
-                tree = _ink_tree(ink, pa, reach) if tree is None else tree
+                tree = _ink_tree(ink, pa, far_reach) if tree is None else tree
                 link = _between(tree, pa, pb)
+                if link is not None and len(link) >= reach:
+                    link = link if own_line(link, strokes[i], strokes[j]) else None
             if link is not None:
                 out.append(((i, ie, j, je), link))
     return out
+
+
+OWN = 0.8  # share of a long link's points that must lie on one of its two strokes
+
+
+def own_line(link, first, second, share: float = OWN) -> bool:
+    """Whether ``share`` of the points of ``link`` lie on ``first``'s line or on
+    ``second``'s (within a pixel of that stroke's pixels): the pen goes back over
+    the line it has just drawn, or over the one it is about to draw."""
+    from jdraw.planner.stroke_tokens import path_pixels
+
+    q = np.rint(np.asarray(link, np.float64)).astype(np.int64).reshape(-1, 2)
+    if not len(q):
+        return True
+    for s in (first, second):
+        p = path_pixels(s)
+        d = np.abs(q[:, None, :] - p[None, :, :]).max(-1).min(-1)
+        if (d <= 1).mean() >= share:
+            return True
+    return False
 
 
 def join_features(strokes, pair, box=None, link=None) -> np.ndarray:

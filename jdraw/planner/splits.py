@@ -79,11 +79,13 @@ class Splitter(nnx.Module):
         reach: int = REACH,
         *,
         context: bool = False,
+        retrace: int = 0,
         rngs: nnx.Rngs,
     ):
         self.hidden = hidden
         self.patches = patches  # whether the nets see the patches, or the geometry only
         self.reach = reach
+        self.retrace = int(retrace)  # further, back over one of the two strokes' own line
         self.context = bool(context)
         c = CONTEXT_FEATURES if context else 0
         self.split_net = MLP((CORNER_FEATURES if patches else GEOMETRY_FEATURES) + c, hidden, rngs)
@@ -139,7 +141,7 @@ def all_corners(
 
 
 def all_pairs(
-    strokes, ink=None, drawn=None, patches: bool = True, reach: int = REACH
+    strokes, ink=None, drawn=None, patches: bool = True, reach: int = REACH, retrace: int = 0
 ) -> tuple[list, np.ndarray]:
     """Every joinable pair of ends (:func:`end_links`, on ``ink``, up to ``reach``
     apart through it) and its features.
@@ -148,7 +150,7 @@ def all_pairs(
     ends' midpoint: the ink as drawn (``drawn``) and each stroke's pixels;
     ``patches=False``: the geometry only.
     """
-    found = end_links(strokes, ink, reach=reach) if strokes else []
+    found = end_links(strokes, ink, reach=reach, retrace=retrace) if strokes else []
     pairs = [q for q, _ in found]
     feats = []
     if pairs:
@@ -212,7 +214,7 @@ def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: 
     inks = [None] * len(characters) if inks is None else inks
     drawn = [None] * len(characters) if drawn is None else drawn
     found = [
-        all_pairs(s, ink, d, splitter.patches, splitter.reach)
+        all_pairs(s, ink, d, splitter.patches, splitter.reach, splitter.retrace)
         for s, ink, d in zip(characters, inks, drawn)
     ]
     on = splitter.context
@@ -224,7 +226,8 @@ def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: 
         z = logit[at : at + len(pairs)]
         at += len(pairs)
         chosen = [pairs[k] for k in np.argsort(-z) if z[k] > threshold]
-        out.append(join_pairs(strokes, chosen, ink, splitter.reach) if chosen else list(strokes))
+        reach = max(splitter.reach, splitter.retrace)
+        out.append(join_pairs(strokes, chosen, ink, reach) if chosen else list(strokes))
     return out
 
 
@@ -283,6 +286,7 @@ def save(splitter: Splitter, out_dir, provenance: dict | None = None) -> pathlib
         "patches": splitter.patches,
         "reach": splitter.reach,
         "context": splitter.context,
+        "retrace": splitter.retrace,
         "corner_features": CORNER_FEATURES if splitter.patches else GEOMETRY_FEATURES,
         "join_features": join_width(splitter.patches, splitter.reach),
         "provenance": provenance or {},
@@ -306,6 +310,13 @@ def load(bundle_dir) -> Splitter | None:
                 "(configs/default.py, stage splitter)"
             )
         ctx = bool(meta.get("context", False))
-        return Splitter(int(meta.get("hidden", 64)), patches, reach, context=ctx, rngs=nnx.Rngs(0))
+        return Splitter(
+            int(meta.get("hidden", 64)),
+            patches,
+            reach,
+            context=ctx,
+            retrace=int(meta.get("retrace", 0)),
+            rngs=nnx.Rngs(0),
+        )
 
     return bundle.load_net(bundle_dir, "splitter", build)

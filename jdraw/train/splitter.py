@@ -26,10 +26,12 @@ import optax
 from flax import nnx
 
 from jdraw.planner import corners, joins, splits
-from jdraw.train.ranker import made_chunks, read_chunks
+from jdraw.train.ranker import chunk_jobs, made_chunks, read_chunks, set_groups, shares_of
 
 
-def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[np.ndarray, ...]:
+def examples(
+    traced, refs, ink, drawn=None, reach: int = joins.REACH, retrace: int = 0
+) -> tuple[np.ndarray, ...]:
     """Split and join examples of one character: ``(xs, ys, xj, yj, cs, cj)``.
 
     ``cs`` and ``cj`` are the drawing's context (:func:`jdraw.planner.splits.drawing_rows`)
@@ -39,7 +41,8 @@ def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[n
     Args:
       traced: the tracer's strokes; refs: the reference strokes; ink: the ink
         planned (canonical); drawn: the ink as drawn before it was canonicalised;
-        reach: pixels between ends joined through the ink (0: near ends only).
+        reach: pixels between ends joined through the ink (0: near ends only);
+        retrace: further, up to this many, back over one of the two strokes' line.
     """
     strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in traced if len(s)]
     keys, xs = splits.all_corners(strokes, drawn)  # grouped by stroke, in stroke order
@@ -53,7 +56,7 @@ def examples(traced, refs, ink, drawn=None, reach: int = joins.REACH) -> tuple[n
         ys.append(lab)
         cut += corners.split_at(p, ks[lab]) if lab.any() else [p]
     ys = np.concatenate(ys) if ys else np.zeros(0)
-    pairs, xj = splits.all_pairs(cut, ink, drawn, reach=reach)
+    pairs, xj = splits.all_pairs(cut, ink, drawn, reach=reach, retrace=retrace)
     yj = [
         joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
@@ -80,12 +83,18 @@ def fit(
     hidden: int = 64,
     reach: int = joins.REACH,
     context: bool = False,
+    retrace: int = 0,
+    join_draw=None,
 ):
     """Fits a :class:`jdraw.planner.splits.Splitter` on stacked :func:`examples`.
 
     ``patches=False`` fits nets that see the geometry only (the first
     features of each example); ``reach`` is the one the examples were made with;
-    ``context``: the nets also see each drawing's context (``data``'s last two arrays).
+    ``context``: the nets also see each drawing's context (``data``'s last two arrays);
+    ``retrace``: the one the examples were made with (kept in the splitter);
+    ``join_draw``: ``(groups [J] int, p [G] float)``, each end pair's set and each
+    set's share of a batch's pairs (:func:`jdraw.train.ranker.shares_of`); ``None``:
+    pairs drawn uniformly, as corners always are.
     """
     xs, ys, xj, yj = data[:4]
     if not patches:
@@ -93,7 +102,9 @@ def fit(
         xj = xj[:, : splits.join_width(False, reach)]
     if context:
         xs, xj = np.concatenate([xs, data[4]], -1), np.concatenate([xj, data[5]], -1)
-    model = splits.Splitter(hidden, patches, reach, context=context, rngs=nnx.Rngs(seed))
+    model = splits.Splitter(
+        hidden, patches, reach, context=context, retrace=retrace, rngs=nnx.Rngs(seed)
+    )
     tx = optax.adam(lr)
     graphdef, params = nnx.split(model, nnx.Param)
     opt = tx.init(params)
@@ -113,10 +124,16 @@ def fit(
         return optax.apply_updates(params, upd), opt, loss, accs
 
     rng = np.random.default_rng(seed)
+    if join_draw is not None:
+        members = [np.flatnonzero(join_draw[0] == g) for g in range(len(join_draw[1]))]
     logs = []
     for s in range(steps):
         i = rng.integers(len(xs), size=batch)
-        j = rng.integers(len(xj), size=batch)
+        if join_draw is None:
+            j = rng.integers(len(xj), size=batch)
+        else:
+            counts = rng.multinomial(batch, join_draw[1])
+            j = np.concatenate([m[rng.integers(len(m), size=c)] for m, c in zip(members, counts)])
         params, opt, loss, accs = step(params, opt, xs[i], ys[i], xj[j], yj[j])
         if s % 500 == 0 or s == steps - 1:
             logs.append(
@@ -138,9 +155,12 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     (:mod:`jdraw.data.mix`), each planned by the tracer without a splitter.
     """
     reach = int(cfg.get("reach", joins.REACH))
+    retrace = int(cfg.get("retrace", 0))
 
     def label(demos, drawn):
-        return [examples(s, d.strokes, d.target, d.drawn, reach) for d, s in zip(demos, drawn)]
+        return [
+            examples(s, d.strokes, d.target, d.drawn, reach, retrace) for d, s in zip(demos, drawn)
+        ]
 
     return made_chunks(cfg, workdir, label, progress=progress)
 
@@ -174,6 +194,10 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     t1 = time.time()
     context = bool(cfg.get("context", False))
     data = load_examples(paths, context)
+    draw = None
+    if cfg.get("join_shares", None):
+        names = [name for name, _, _ in chunk_jobs(cfg)]
+        draw = shares_of(set_groups(paths, names)[1], dict(cfg.join_shares), known=names)
     model, logs = fit(
         data,
         steps=int(cfg.steps),
@@ -184,6 +208,8 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         hidden=int(cfg.get("hidden", 64)),
         reach=int(cfg.get("reach", joins.REACH)),
         context=context,
+        retrace=int(cfg.get("retrace", 0)),
+        join_draw=draw,
     )
     t2 = time.time()
     result = {

@@ -132,7 +132,7 @@ def splitter() -> ml_collections.ConfigDict:
     c.patches = False  # the nets see each corner's and join's geometry only
     c.context = True  # ... and the drawing's context (jdraw.planner.stroke_tokens.context)
     c.reach = 16  # pixels: ends linked through the ink (back over a drawn line, as cursive is)
-    c.retrace = 0  # further, back over one of the two strokes' own line (joins.own_line)
+    c.retrace = 0  # further, back over one of the two strokes' own line (ink_paths.own_line)
     c.hidden = 64
     c.steps = 3000
     c.batch = 512
@@ -377,7 +377,7 @@ def own_retrace(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
 
     Ends up to ``reach`` (16) moves apart through the ink are candidates as in the
     default; ends further apart, up to ``retrace`` (40) moves, only where that path
-    goes back over one of the two strokes' own line (``jdraw.planner.joins.own_line``),
+    goes back over one of the two strokes' own line (``jdraw.planner.ink_paths.own_line``),
     as a cursive writer runs back down the stem just drawn up. Latin letters give
     under 1% of the end pairs, so they are 10% of every batch's (``join_shares``).
     The local and start stages are the default's, copied in before the run:

@@ -27,12 +27,11 @@ again.
 
 from __future__ import annotations
 
-from collections import deque
-
 import numpy as np
 
 from jdraw.planner.corners import SPAN as CORNER_SPAN
 from jdraw.planner.corners import _arclength, _box, _owners, _unit, corners
+from jdraw.planner.ink_paths import between, ink_tree, own_line
 from jdraw.planner.ranker import reverse
 
 GAP = 3  # pixels (Chebyshev) between the ends joined
@@ -198,39 +197,6 @@ JOIN_GEOMETRY = 23  # of a pair of ends (join_features)
 REACH = 8  # pixels (Chebyshev, and moves along the ink) between ends linked through ink
 
 
-def _pixel(p) -> tuple[int, int]:
-    return tuple(int(v) for v in np.rint(p))
-
-
-def _ink_tree(ink: np.ndarray, a, moves: int) -> dict:
-    """Breadth-first tree of 8-connected ink pixels within ``moves`` moves of ``a``:
-    ``{pixel: the pixel before it}``, so each path in it is a shortest one."""
-    h, w = ink.shape
-    a = _pixel(a)
-    prev = {a: a}
-    todo = deque([(a, 0)])
-    while todo:
-        c, n = todo.popleft()
-        if n == moves:
-            continue
-        for q in ((c[0] + dx, c[1] + dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1)):
-            if q not in prev and 0 <= q[0] < w and 0 <= q[1] < h and ink[q[1], q[0]]:
-                prev[q] = c
-                todo.append((q, n + 1))
-    return prev
-
-
-def _between(prev: dict, a, b) -> np.ndarray | None:
-    """The points strictly between ``a`` and ``b`` on the tree ``prev``'s path, if it has ``b``."""
-    a, b = _pixel(a), _pixel(b)
-    if b not in prev:
-        return None
-    out = [b]
-    while out[-1] != a:
-        out.append(prev[out[-1]])
-    return np.asarray(out[-2:0:-1], np.float64).reshape(-1, 2)
-
-
 def bridge(a, b, ink=None, gap: int = GAP, reach: int = REACH) -> np.ndarray | None:
     """Points strictly between two ends that a join draws, or ``None`` if they cannot join.
 
@@ -245,7 +211,7 @@ def bridge(a, b, ink=None, gap: int = GAP, reach: int = REACH) -> np.ndarray | N
         return link if _on_ink(np.concatenate([a[None], link, b[None]]), ink) else None
     if ink is None or far > reach:
         return None
-    return _between(_ink_tree(np.asarray(ink, bool), a, reach), a, b)
+    return between(ink_tree(np.asarray(ink, bool), a, reach), a, b)
 
 
 def _end(p: np.ndarray, at_end: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -294,33 +260,13 @@ def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH, retrace: in
             if far <= gap:
                 link = bridge(pa, pb, ink, gap, reach)
             else:  # as bridge(): the shortest path through the ink of at most reach moves
-                tree = _ink_tree(ink, pa, far_reach) if tree is None else tree
-                link = _between(tree, pa, pb)
+                tree = ink_tree(ink, pa, far_reach) if tree is None else tree
+                link = between(tree, pa, pb)
                 if link is not None and len(link) >= reach:
                     link = link if own_line(link, strokes[i], strokes[j]) else None
             if link is not None:
                 out.append(((i, ie, j, je), link))
     return out
-
-
-OWN = 0.8  # share of a long link's points that must lie on one of its two strokes
-
-
-def own_line(link, first, second, share: float = OWN) -> bool:
-    """Whether ``share`` of the points of ``link`` lie on ``first``'s line or on
-    ``second``'s (within a pixel of that stroke's pixels): the pen goes back over
-    the line it has just drawn, or over the one it is about to draw."""
-    from jdraw.planner.stroke_tokens import path_pixels
-
-    q = np.rint(np.asarray(link, np.float64)).astype(np.int64).reshape(-1, 2)
-    if not len(q):
-        return True
-    for s in (first, second):
-        p = path_pixels(s)
-        d = np.abs(q[:, None, :] - p[None, :, :]).max(-1).min(-1)
-        if (d <= 1).mean() >= share:
-            return True
-    return False
 
 
 def join_features(strokes, pair, box=None, link=None) -> np.ndarray:

@@ -132,7 +132,8 @@ def splitter() -> ml_collections.ConfigDict:
     c.patches = False  # the nets see each corner's and join's geometry only
     c.context = True  # ... and the drawing's context (jdraw.planner.stroke_tokens.context)
     c.reach = 16  # pixels: ends linked through the ink (back over a drawn line, as cursive is)
-    c.retrace = 0  # further, back over one of the two strokes' own line (ink_paths.own_line)
+    # No ``retrace`` key: ends further than ``reach`` are not linked (own_retrace sets it;
+    # the bundled splitter was trained before the key existed, and absent reads as 0).
     c.hidden = 64
     c.steps = 3000
     c.batch = 512

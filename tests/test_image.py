@@ -40,6 +40,24 @@ def test_lighting_gradient_does_not_become_ink():
     assert not (prep.ink & ~truth.astype(bool)).any()
 
 
+def test_heavy_ink_is_found_where_it_covers_much_of_the_image():
+    # A bold font's word: thick bars over 42% of the image (UKIJ Chechek's Arabic was
+    # "blank": the ground's first fit ran so close through the ink that none stood out).
+    img = np.full((116, 240), 255, np.uint8)
+    for x0, y0, x1, y1 in (
+        (8, 82, 232, 108),
+        (85, 14, 124, 108),
+        (189, 27, 210, 108),
+        (119, 17, 156, 108),
+        (181, 36, 214, 108),
+    ):
+        img[y0:y1, x0:x1] = 0
+    truth = img < 128
+    assert 0.35 < truth.mean() < 0.45
+    prep = prepare(img)
+    assert (prep.ink == truth).mean() > 0.98  # all but a pixel's edge
+
+
 def test_to_gray_accepts_common_layouts():
     rgb = np.full((10, 12, 3), 255, np.uint8)
     rgb[2, 3] = 0

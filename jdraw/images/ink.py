@@ -116,13 +116,17 @@ def _grid_eval(coef: np.ndarray, powers, xp: np.ndarray, yp: np.ndarray) -> np.n
     return np.einsum("ya,xa->yx", np.einsum("yb,ba->ya", yp, c), xp)  # einsum: no BLAS threads
 
 
-def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
+def background(gray: np.ndarray, polarity: str, degree: int = 3, heavy: bool = False) -> np.ndarray:
     """The ground's brightness under the ink: ``float32 [H, W]``.
 
     A cubic in (x, y) fitted to a small copy of the image, refitted a few
     times without the pixels that lie on the ink side of it (a robust fit):
     lighting gradients, vignetting and soft shadows are smooth, ink is not.
     Unlike a blur, the fit does not bend towards the interior at the borders.
+
+    ``heavy``: the first fit leaves out the ink side of Otsu's threshold. Ink that
+    covers much of the image (a bold font's word, 40% ink) pulls a first fit through
+    every pixel so close that no ink stands clear of it, and no refit drops any.
     """
     h, w = gray.shape
     # Each axis shrinks on its own: a long thin strip keeps its short side, so a
@@ -135,6 +139,9 @@ def background(gray: np.ndarray, polarity: str, degree: int = 3) -> np.ndarray:
     yp = (np.arange(sh) / (sh - 1) * 2 - 1)[:, None] ** np.arange(n)
     sign = 1.0 if polarity == "light" else -1.0
     keep = np.ones(small.shape, bool)
+    if heavy:
+        ground = sign * small < sign * morph.otsu(small)
+        keep = ground if ground.sum() >= len(powers) * 4 else keep
     for _ in range(5):
         coef = _grid_fit(small, keep, xp, yp, powers)
         r = small - _grid_eval(coef, powers, xp, yp)
@@ -179,10 +186,19 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
         raise ValueError(f"polarity must be 'auto', 'dark' or 'light', got {polarity!r}")
     if polarity == "auto":
         polarity = detect_polarity(gray)
+    try:
+        return _mask(gray, polarity), polarity
+    except BlankImageError:
+        # Ink over much of the image can hide under the ground's first fit.
+        return _mask(gray, polarity, heavy=True), polarity
+
+
+def _mask(gray: np.ndarray, polarity: str, heavy: bool = False) -> np.ndarray:
+    """:func:`binarize`'s mask for a known polarity (``heavy``: :func:`background`'s)."""
     g = cv2.GaussianBlur(np.asarray(gray, np.float32), (0, 0), 1.0)
     # contrast = sign * (1 - g / max(bg, 0.02)), computed in place: the same float32
     # values with one full-size array instead of four (a 100 Mpx scan is 400 MB each).
-    contrast = background(g, polarity)
+    contrast = background(g, polarity, heavy=heavy)
     np.maximum(contrast, 0.02, out=contrast)
     np.divide(g, contrast, out=contrast)
     np.subtract(1.0, contrast, out=contrast)
@@ -210,7 +226,7 @@ def binarize(gray: np.ndarray, polarity: str = "auto") -> tuple[np.ndarray, str]
     del background_px
     if level - base < max(0.06, 6.0 * noise):
         raise BlankImageError("no ink found (nothing stands out from the background)")
-    return contrast > base + 0.5 * (level - base), polarity
+    return contrast > base + 0.5 * (level - base)
 
 
 def ink_distance(ink: np.ndarray) -> np.ndarray:

@@ -20,12 +20,14 @@ Fits: ``kanji64`` (KanjiVG only, 64 wide, no context: the ranker before
 cursive, no context), ``ctx64`` and ``ctx128`` (the same sets, with the drawing's
 context: the default); ``words128`` adds 1,000 printed Latin words
 (:func:`jdraw.data.latin.words`), ``heads128`` gives cursive 15% and Latin letters
-10% of every batch's headings (``heading_shares``), ``wheads128`` both.
+10% of every batch's headings (``heading_shares``), ``wheads128`` both (the
+default); ``wcur30`` gives cursive 30%, ``wcur30w`` printed words 10% more.
 
 ``--arabic N``: also plan our Arabic words (``bench/rtl_words.py``, N words a
 font, the right-to-left hint) with each ranker in a copy of the default bundle,
 and report the share whose first stroke starts in the rightmost letter and the
-rank correlation of stroke order with x.
+rank correlation of stroke order with x; in the held-out fonts, or in the
+detector's validation fonts with ``--arabic-fonts val``.
 """
 
 from __future__ import annotations
@@ -54,6 +56,7 @@ import rtl_words  # noqa: E402 (bench/rtl_words.py, beside this script)
 
 MIX = ("kanji", "latin", "cursive")
 HEADS = {"cursive": 0.15, "latin": 0.1}  # heads128's shares of a batch's headings
+CUR30 = {"cursive": 0.3, "latin": 0.1}
 FITS = {  # name: (sets, hidden, context, heading shares)
     "kanji64": (("kanji",), 64, False, None),
     "kanji128": (("kanji",), 128, False, None),
@@ -64,17 +67,20 @@ FITS = {  # name: (sets, hidden, context, heading shares)
     "words128": ((*MIX, "latin_words"), 128, True, None),
     "heads128": (MIX, 128, True, HEADS),
     "wheads128": ((*MIX, "latin_words"), 128, True, HEADS),
+    "wcur30": ((*MIX, "latin_words"), 128, True, CUR30),
+    "wcur30w": ((*MIX, "latin_words"), 128, True, {**CUR30, "latin_words": 0.1}),
 }
 
 
-def arabic(model, work: pathlib.Path, words: int, tag: str) -> list:
+def arabic(model, work: pathlib.Path, words: int, tag: str, fonts: str = "eval") -> list:
     """``[first, rho]`` of Arabic words planned right to left with ``model`` as the ranker
     (in a copy of the default bundle, ``work/bundle_<tag>``: bundles are cached by folder)."""
     b = work / f"bundle_{tag}"
     shutil.rmtree(b, ignore_errors=True)
     shutil.copytree(bundle.DEFAULT_BUNDLE, b)
     ranker.save(model, b)
-    r = rtl_words.measure("arabic", words, np.random.default_rng(0), "rtl", str(b))
+    table = rtl_words.F.DETECTOR_VAL if fonts == "val" else rtl_words.F.DETECTOR_EVAL
+    r = rtl_words.measure("arabic", words, np.random.default_rng(0), "rtl", str(b), table)
     return [round(r["first"], 3), round(r["rho"], 3)]
 
 
@@ -107,6 +113,7 @@ def main(argv=None) -> None:
     p.add_argument("--seeds", default="0,1")
     p.add_argument("--splits", default="val", help="KanjiVG splits to score (val, test)")
     p.add_argument("--arabic", type=int, default=0, help="Arabic words per font (0: none)")
+    p.add_argument("--arabic-fonts", default="eval", choices=("eval", "val"))
     a = p.parse_args(argv)
     work = pathlib.Path(a.workdir)
     cfg = default.ranker()
@@ -141,7 +148,9 @@ def main(argv=None) -> None:
                 r = metrics.score(demos, ranker.reorder(plan, "ranker", model), inputs)
                 row[name] = [round(r["order_all_pairs"], 4), round(r["direction_agreement"], 4)]
             if a.arabic:
-                row["arabic rtl: first, rho"] = arabic(model, work, a.arabic, f"{fit}_{seed}")
+                row["arabic rtl: first, rho"] = arabic(
+                    model, work, a.arabic, f"{fit}_{seed}", a.arabic_fonts
+                )
             rows[f"{fit} seed {seed}"] = row
             print(f"{fit} seed {seed}: order over all pairs, direction:", json.dumps(row))
     (work / "results.json").write_text(json.dumps(rows, indent=1) + "\n")

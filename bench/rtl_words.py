@@ -2,6 +2,7 @@
 
   python bench/rtl_words.py [--words 8] [--detector-words 12] [--seed 0] [--detector DIR]
       [--checkpoint BUNDLE] [--only hebrew,arabic,latin] [--directions auto,rtl,ltr]
+      [--fonts eval|val]
 
 Hebrew and Arabic words of our own (jdraw.data.fonts.WORDS) are set in the
 fonts the reading-direction detector never saw (jdraw.data.fonts.DETECTOR_EVAL),
@@ -15,6 +16,10 @@ Per script and setting it prints:
   (its x within that letter's advance, plus 5% of the height);
 * ``rho``: mean Spearman correlation of a stroke's place in the plan with its
   mean x (negative: right to left), over words of 3 or more strokes.
+
+``--fonts val`` sets the words in the detector's validation fonts instead
+(jdraw.data.fonts.DETECTOR_VAL), for choosing between planners without looking
+at the held-out ones.
 
 Latin words (print and Dancing Script) show that left-to-right text keeps its
 positive correlation. A second table gives the detector's accuracy on random
@@ -45,11 +50,12 @@ def measure(
     rng: np.random.Generator,
     direction: str | None,
     checkpoint: str | None = None,
+    fonts: dict | None = None,
 ) -> dict:
     first = rho = read = 0.0
     n = n_rho = 0
     k = 0
-    for font in F.DETECTOR_EVAL[script]:
+    for font in (fonts or F.DETECTOR_EVAL)[script]:
         for _ in range(words):
             text = F.WORDS[script][k % len(F.WORDS[script])]
             k += 1
@@ -89,6 +95,7 @@ def main() -> None:
     ap.add_argument("--checkpoint", help="planner bundle (default: the bundled default)")
     ap.add_argument("--only", default="hebrew,arabic,latin", help="scripts of the first table")
     ap.add_argument("--directions", default="auto,rtl,ltr", help="settings of the first table")
+    ap.add_argument("--fonts", default="eval", choices=("eval", "val"), help="fonts of the words")
     args = ap.parse_args()
     from jdraw.images import reading
 
@@ -101,7 +108,8 @@ def main() -> None:
     for script in args.only.split(","):
         for direction in [None if d == "auto" else d for d in args.directions.split(",")]:
             rng = np.random.default_rng(args.seed)
-            r = measure(script, args.words, rng, direction, args.checkpoint)
+            fonts = F.DETECTOR_VAL if args.fonts == "val" else F.DETECTOR_EVAL
+            r = measure(script, args.words, rng, direction, args.checkpoint, fonts)
             print(
                 f"| {script} | {direction or 'auto'} | {r['words']} | {r['read_rtl']:.2f} | "
                 f"{r['first']:.2f} | {r['rho']:+.2f} |",

@@ -118,3 +118,20 @@ def test_printed_words_are_training_glyphs_written_one_after_another_left_to_rig
             )
             assert own[:, 0].min() > right
             right, at = own[:, 0].max(), at + len(latin.GLYPHS[g])
+
+
+def test_latin_scores_on_jdraws_own_lines_take_the_tolerance_asked_for(monkeypatch):
+    from jdraw.evaluation import latin as latin_eval
+
+    seen = []
+
+    def no_planner(inputs, checkpoint, **_):  # no model to load: metrics.score is replaced too
+        return "plan"
+
+    monkeypatch.setattr(latin_eval, "plan_batched", no_planner)
+    monkeypatch.setattr(latin_eval.api, "load_ranker", lambda ck: None)
+    monkeypatch.setattr(latin_eval.ranker, "reorder", lambda plan, order, rk: plan)
+    monkeypatch.setattr(latin_eval.metrics, "score", lambda d, p, i, tol: seen.append(tol) or {})
+    latin_eval.evaluate_latin(copies=1, styles=("clean", "px3"), progress=False)
+    latin_eval.evaluate_latin(copies=1, styles=("clean",), progress=False, clean_tol=1)
+    assert seen == [0, 1, 1]

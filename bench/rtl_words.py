@@ -105,10 +105,10 @@ def main() -> None:
     print("| script | direction | words | read rtl | first stroke in first letter | rho |")
     print("| --- | --- | ---: | ---: | ---: | ---: |")
     t0 = time.perf_counter()
+    fonts = F.DETECTOR_VAL if args.fonts == "val" else F.DETECTOR_EVAL
     for script in args.only.split(","):
         for direction in [None if d == "auto" else d for d in args.directions.split(",")]:
             rng = np.random.default_rng(args.seed)
-            fonts = F.DETECTOR_VAL if args.fonts == "val" else F.DETECTOR_EVAL
             r = measure(script, args.words, rng, direction, args.checkpoint, fonts)
             print(
                 f"| {script} | {direction or 'auto'} | {r['words']} | {r['read_rtl']:.2f} | "

@@ -120,7 +120,7 @@ def test_printed_words_are_training_glyphs_written_one_after_another_left_to_rig
             right, at = own[:, 0].max(), at + len(latin.GLYPHS[g])
 
 
-def test_latin_scores_on_jdraws_own_lines_take_the_tolerance_asked_for(monkeypatch):
+def test_latin_scores_jdraws_own_lines_exactly_and_with_a_pixel_of_tolerance(monkeypatch):
     from jdraw.evaluation import latin as latin_eval
 
     seen = []
@@ -131,7 +131,7 @@ def test_latin_scores_on_jdraws_own_lines_take_the_tolerance_asked_for(monkeypat
     monkeypatch.setattr(latin_eval, "plan_batched", no_planner)
     monkeypatch.setattr(latin_eval.api, "load_ranker", lambda ck: None)
     monkeypatch.setattr(latin_eval.ranker, "reorder", lambda plan, order, rk: plan)
-    monkeypatch.setattr(latin_eval.metrics, "score", lambda d, p, i, tol: seen.append(tol) or {})
-    latin_eval.evaluate_latin(copies=1, styles=("clean", "px3"), progress=False)
-    latin_eval.evaluate_latin(copies=1, styles=("clean",), progress=False, clean_tol=1)
+    monkeypatch.setattr(latin_eval.metrics, "score", lambda d, p, i, tol: seen.append(tol) or tol)
+    out = latin_eval.evaluate_latin(copies=1, styles=("clean", "px3"), progress=False)
     assert seen == [0, 1, 1]
+    assert (out["clean"], out["clean_1px"], out["px3"]) == (0, 1, 1)

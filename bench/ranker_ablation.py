@@ -21,7 +21,10 @@ cursive, no context), ``ctx64`` and ``ctx128`` (the same sets, with the drawing'
 context: the default); ``words128`` adds 1,000 printed Latin words
 (:func:`jdraw.data.latin.words`), ``heads128`` gives cursive 15% and Latin letters
 10% of every batch's headings (``heading_shares``), ``wheads128`` both (the
-default); ``wcur30`` gives cursive 30%, ``wcur30w`` printed words 10% more.
+default); ``wcur30`` gives cursive 30%, ``wcur30w`` printed words 10% more;
+``pfx`` adds 400 cursive fragments stopped part-way through their writing
+(:func:`jdraw.data.cursive.prefixes`) with 15% of the headings, ``pfxh`` splits
+cursive's 15% between them.
 
 ``--arabic N``: also plan our Arabic words (``bench/rtl_words.py``, N words a
 font, the right-to-left hint) with each ranker in a copy of the default bundle,
@@ -69,7 +72,15 @@ FITS = {  # name: (sets, hidden, context, heading shares)
     "wheads128": ((*MIX, "latin_words"), 128, True, HEADS),
     "wcur30": ((*MIX, "latin_words"), 128, True, CUR30),
     "wcur30w": ((*MIX, "latin_words"), 128, True, {**CUR30, "latin_words": 0.1}),
+    "pfx": ((*MIX, "latin_words", "cursive_prefix"), 128, True, {**HEADS, "cursive_prefix": 0.15}),
+    "pfxh": (
+        (*MIX, "latin_words", "cursive_prefix"),
+        128,
+        True,
+        {"cursive": 0.075, "cursive_prefix": 0.075, "latin": 0.1},
+    ),
 }
+PREFIX_CHARS = 400  # fragments stopped part-way (jdraw.data.cursive.prefixes), where a fit asks
 
 
 def arabic(model, work: pathlib.Path, words: int, tag: str, fonts: str = "eval") -> list:
@@ -118,6 +129,8 @@ def main(argv=None) -> None:
     work = pathlib.Path(a.workdir)
     cfg = default.ranker()
     cfg.tracer, cfg.out = str(bundle.DEFAULT_BUNDLE), str(work / "out")
+    if any("cursive_prefix" in FITS[f][0] for f in a.fits.split(",")):
+        cfg.extra = {**cfg.extra.to_dict(), "cursive_prefix": PREFIX_CHARS}
     paths = ranker_train.make_examples(cfg, work)
     names = [j[0] for j in ranker_train.chunk_jobs(cfg)]
     groups = ranker_train.set_groups(paths, names)[0]

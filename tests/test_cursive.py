@@ -147,3 +147,43 @@ def test_clean_path_keeps_a_line_drawn_back_over_itself():
     np.testing.assert_array_equal(demos.clean_path(there_and_back)[:, 0], [0, 1, 1, 1])
     stairs = demos.clean_path(np.array([[0, 0], [1, 0], [1, 1], [2, 1], [2, 2]]), True)
     assert np.all(np.max(np.abs(stairs[2:] - stairs[:-2]), axis=1) == 2)
+
+
+def test_a_prefix_is_the_writing_stopped_part_way():
+    strokes = cursive.word_strokes("dot")  # body, then the t's cross
+    total = sum(float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum()) for p in strokes)
+    body = float(np.linalg.norm(np.diff(strokes[0], axis=0), axis=1).sum())
+    cut = cursive._prefix(strokes, 0.5 * body)
+    assert len(cut) == 1  # stopped inside the body: the cross is not drawn yet
+    np.testing.assert_allclose(cut[0][:-1], strokes[0][: len(cut[0]) - 1])
+    assert np.linalg.norm(np.diff(cut[0], axis=0), axis=1).sum() == pytest.approx(0.5 * body)
+    assert len(cursive._prefix(strokes, total + 1)) == len(strokes)
+
+
+def test_prefixes_are_fragments_cut_to_a_share_of_their_length():
+    ks = cursive.prefixes("val", n=40, seed=3)
+    assert len(ks) == 40 and ks.keep_turns
+    for i in range(len(ks)):
+        name = str(ks.names[i])
+        word, rest = name.split("[")
+        s, e = (int(v) for v in rest.split("]")[0].split(":"))
+        share = float(name.split("@")[1])
+        assert 0.4 <= share <= 1.0 and cursive.split_of(word) == "val"
+        full = cursive.fragment_strokes(word, s, e)
+        length = sum(float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum()) for p in full)
+        drawn = sum(
+            float(np.linalg.norm(np.diff(c[:, [0, 3]], axis=1), axis=-1).sum())
+            for c in ks.strokes(i)
+        )
+        scale = cursive.fit(cursive._prefix(full, share * length))[0]
+        assert drawn == pytest.approx(share * length * scale, rel=2e-3, abs=0.05)
+        pts = np.concatenate(ks.strokes(i)).reshape(-1, 2)
+        assert pts.min() >= cursive.MARGIN - 1e-3 and pts.max() <= 99 - cursive.MARGIN + 1e-3
+
+
+def test_prefixes_are_a_training_set_by_name():
+    from jdraw.data import mix
+
+    ks, pool = mix.load("cursive_prefix", progress=False)
+    assert len(pool) == len(ks) == 2000 and ks.keep_turns
+    assert {cursive.split_of(str(n).split("[")[0]) for n in ks.names} == {"train"}

@@ -48,6 +48,7 @@ import functools
 import hashlib
 import json
 import pathlib
+import zlib
 
 import numpy as np
 
@@ -305,4 +306,70 @@ def fragments(
                 codes.append(1000 * index[w] + 30 * s + s + n)
     if not names:
         raise ValueError(f"no fragment of the {split!r} words fits at min_scale={min_scale}")
+    return KanjiSet.from_strokes(names, codes, chars, keep_turns=True)
+
+
+def _prefix(strokes: list[np.ndarray], length: float) -> list[np.ndarray]:
+    """The writer's strokes up to ``length`` font units of pen-down motion."""
+    out = []
+    for p in strokes:
+        seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
+        run = np.concatenate([[0.0], np.cumsum(seg)])
+        if run[-1] <= length:
+            out.append(p)
+            length -= run[-1]
+            continue
+        k = int(np.searchsorted(run, length, side="right"))  # run[k - 1] <= length < run[k]
+        t = (length - run[k - 1]) / max(seg[k - 1], 1e-9)
+        cut = np.concatenate([p[:k], (p[k - 1] + t * (p[k] - p[k - 1]))[None]])
+        if len(cut) > 1 and run[k - 1] + t * seg[k - 1] > 0:
+            out.append(cut)
+        break
+    return out
+
+
+def prefixes(
+    split: str,
+    n: int = 2000,
+    seed: int = 0,
+    min_share: float = 0.4,
+    min_scale: float = MIN_SCALE,
+) -> KanjiSet:
+    """Fragments stopped part-way through their writing, wherever the pen happens to be.
+
+    Each is a fragment of 2-5 letters of a word of ``split`` (as :func:`fragments`)
+    written up to a random share, ``min_share`` to 1, of its pen-down length: its
+    last stroke stops wherever the pen was then (going up an ascender, round a loop,
+    along a join), and whatever the writer drew later (the rest, the dots and
+    crosses) is not there. Fragments cut at letter boundaries end where a letter
+    ends; these teach that a stroke's end is wherever its writing stopped, not only
+    at a letter's exit, so its heading must be read from the line's run.
+
+    Returns:
+      a :class:`jdraw.data.kanji.KanjiSet` of ``n`` drawings (``names`` like
+      ``"hello[1:4]@0.6312"``), fitted to the canvas as :func:`fragments` are.
+    """
+    words = split_words(split)
+    rng = np.random.default_rng([seed, zlib.crc32(split.encode())])
+    names, codes, chars = [], [], []
+    tries = 0
+    while len(names) < n:
+        tries += 1
+        if tries > 20 * n:
+            raise ValueError(f"only {len(names)} of {n} prefixes of the {split!r} words fit")
+        w = words[int(rng.integers(len(words)))]
+        k = int(rng.integers(min(2, len(w)), min(5, len(w)) + 1))
+        s = int(rng.integers(len(w) - k + 1))
+        strokes = fragment_strokes(w, s, s + k)
+        total = sum(float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum()) for p in strokes)
+        share = float(rng.uniform(min_share, 1.0))
+        cut = [p for p in _prefix(strokes, share * total) if len(p) > 1]
+        if not cut:
+            continue
+        scale, offset = fit(cut)
+        if scale < min_scale:
+            continue
+        chars.append([to_cubics(p * scale + offset) for p in cut])
+        names.append(f"{w}[{s}:{s + k}]@{share:.4f}")
+        codes.append(len(codes))
     return KanjiSet.from_strokes(names, codes, chars, keep_turns=True)

@@ -3,7 +3,8 @@
 For the tracer-trained parts (splitter, ranker), a config's ``extra`` maps a
 set's name to how many augmented examples of it to trace beside the KanjiVG
 characters, e.g. ``{"latin": 1500}`` (``latin_words``: rows of Latin glyphs,
-:func:`jdraw.data.latin.words`). For the model stages (local and start
+:func:`jdraw.data.latin.words`; ``cursive_prefix``: cursive fragments written only
+part-way, :func:`jdraw.data.cursive.prefixes`). For the model stages (local and start
 models), ``data.extra`` maps a set's name to the share of characters drawn
 from it (:class:`Mixture`; KanjiVG takes the rest). Each set is a
 :class:`jdraw.data.kanji.KanjiSet` with the pool of indices to draw from, so
@@ -40,6 +41,11 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
 
         ks = cursive.fragments("train")
         return ks, np.arange(len(ks))
+    if name == "cursive_prefix":
+        from jdraw.data import cursive
+
+        ks = cursive.prefixes("train")
+        return ks, np.arange(len(ks))
     if name == "scribble":
         from jdraw.data import scribbles
 
@@ -47,7 +53,7 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
         return ks, np.arange(len(ks))
     raise ValueError(
         f"unknown training set {name!r}; "
-        "expected 'kanji', 'latin', 'latin_words', 'cursive' or 'scribble'"
+        "expected 'kanji', 'latin', 'latin_words', 'cursive', 'cursive_prefix' or 'scribble'"
     )
 
 

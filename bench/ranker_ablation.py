@@ -24,7 +24,9 @@ context: the default); ``words128`` adds 1,000 printed Latin words
 default); ``wcur30`` gives cursive 30%, ``wcur30w`` printed words 10% more;
 ``pfx`` adds 400 cursive fragments stopped part-way through their writing
 (:func:`jdraw.data.cursive.prefixes`) with 15% of the headings, ``pfxh`` splits
-cursive's 15% between them.
+cursive's 15% between them. ``--ensembles 2,3`` also scores each fit's first 2 and 3
+seeds' rankers as one (:func:`jdraw.planner.ranker.ensemble`, as the default's
+``members``).
 
 ``--arabic N``: also plan our Arabic words (``bench/rtl_words.py``, N words a
 font, the right-to-left hint) with each ranker in a copy of the default bundle,
@@ -125,6 +127,9 @@ def main(argv=None) -> None:
     p.add_argument("--splits", default="val", help="KanjiVG splits to score (val, test)")
     p.add_argument("--arabic", type=int, default=0, help="Arabic words per font (0: none)")
     p.add_argument("--arabic-fonts", default="eval", choices=("eval", "val"))
+    p.add_argument(
+        "--ensembles", default="", help="also score the first k seeds' rankers as one, e.g. 2,3"
+    )
     a = p.parse_args(argv)
     work = pathlib.Path(a.workdir)
     cfg = default.ranker()
@@ -145,6 +150,7 @@ def main(argv=None) -> None:
         draw = None
         if heads:
             draw = ranker_train.heading_shares(kept, [names[i] for i in keep], heads)
+        fitted = []
         for seed in (int(s) for s in a.seeds.split(",")):
             model, _ = ranker_train.train_ranker(
                 sub,
@@ -156,17 +162,26 @@ def main(argv=None) -> None:
                 hidden=hidden,
                 heading_draw=draw,
             )
-            row = {}
-            for name, (demos, inputs, plan) in sets.items():
-                r = metrics.score(demos, ranker.reorder(plan, "ranker", model), inputs)
-                row[name] = [round(r["order_all_pairs"], 4), round(r["direction_agreement"], 4)]
-            if a.arabic:
-                row["arabic rtl: first, rho"] = arabic(
-                    model, work, a.arabic, f"{fit}_{seed}", a.arabic_fonts
+            fitted.append(model)
+            rows[f"{fit} seed {seed}"] = score(model, sets, a, work, f"{fit}_{seed}")
+        for k in (int(v) for v in a.ensembles.split(",") if v):
+            if k <= len(fitted):  # the first k seeds' rankers as one (their mean scores)
+                rows[f"{fit} seeds 1st {k}"] = score(
+                    ranker.ensemble(fitted[:k]), sets, a, work, f"{fit}_first{k}"
                 )
-            rows[f"{fit} seed {seed}"] = row
-            print(f"{fit} seed {seed}: order over all pairs, direction:", json.dumps(row))
     (work / "results.json").write_text(json.dumps(rows, indent=1) + "\n")
+
+
+def score(model, sets: dict, a, work: pathlib.Path, tag: str) -> dict:
+    """Order over all pairs and direction of every set reordered by ``model``; Arabic words."""
+    row = {}
+    for name, (demos, inputs, plan) in sets.items():
+        r = metrics.score(demos, ranker.reorder(plan, "ranker", model), inputs)
+        row[name] = [round(r["order_all_pairs"], 4), round(r["direction_agreement"], 4)]
+    if a.arabic:
+        row["arabic rtl: first, rho"] = arabic(model, work, a.arabic, tag, a.arabic_fonts)
+    print(f"{tag}: order over all pairs, direction:", json.dumps(row), flush=True)
+    return row
 
 
 if __name__ == "__main__":

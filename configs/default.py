@@ -29,8 +29,10 @@ Writes runs/default/bundle, laid out as jdraw/checkpoints/default, which
    words of Latin letters (jdraw.data.mix); the ranker (128 wide, each pair and
    stroke also given the drawing's context; cursive 15% and Latin letters 10%
    of every batch's heading examples) learns the writers' order and direction
-   of its strokes (jdraw.train.ranker, jdraw.planner.ranker). Made alone by the
-   ``ranker_only`` variant, with stages 1 and 2 as bundled.
+   of its strokes (jdraw.train.ranker, jdraw.planner.ranker). Three rankers are
+   fitted on the same examples, seeds 0, 1 and 2, and bundled as one that
+   scores their mean (``members``; jdraw.planner.ranker.ensemble). Made alone by
+   the ``ranker_only`` variant, with stages 1 and 2 as bundled.
 
 A string ``"stage:NAME"`` in a stage's config is ``WORKDIR/NAME/bundle``.
 These are the configs the bundled default was trained with, flattened (stages
@@ -38,14 +40,16 @@ These are the configs the bundled default was trained with, flattened (stages
 2026-12-05 with stages 1 and 2 as bundled, copied in as ``retrace`` says, by
 ``python train.py --config configs/default.py --workdir runs/default16``; the
 bundle's json files keep the configs, and tests/test_pipeline.py compares them
-with these). Result (docs/scripts.md, results/beyond_default_reach16.json):
-KanjiVG test split stroke accuracy 0.9877, order over all pairs 0.9584,
-direction 0.9974; Latin dev glyphs 0.885 / 0.905 / 0.905; 40 cursive val words
+with these; stage 4 was made again on 2026-12-06, three rankers as one, by the
+``ranker_only`` variant). Result (docs/scripts.md, results/beyond_default_ens3.json):
+KanjiVG test split stroke accuracy 0.9877, order over all pairs 0.9630,
+direction 0.9976; Latin dev glyphs 0.885 / 0.905 / 0.905; 40 cursive val words
 1.94 drawn strokes per written one.
 
-Wall time on the 2-core CPU: about 55 min, the sum of the stages' recorded
+Wall time on the 2-core CPU: about 58 min, the sum of the stages' recorded
 times (training loops 2,105 s and 298 s; the bundle's json files), the splitter's
-tracing (10.4 min, two processes sharing its chunks) and the ranker's (2 min 45 s),
+tracing (10.4 min, two processes sharing its chunks) and the ranker's (4 min 4 s of
+tracing and 49 s for its three fits),
 not one fresh run of this command; loading,
 compiling and validation add a few minutes. The tiny variant: 2 min 20 s and
 2 min 39 s in two runs on the CPU shared with other jobs; its bundle plans, badly.
@@ -158,6 +162,7 @@ def ranker() -> ml_collections.ConfigDict:
     c.styles = dict(STYLES)
     c.hidden = 128
     c.context = True  # every pair and stroke also sees the drawing's context
+    c.members = 3  # fitted with seeds 0, 1, 2 and bundled as one: their mean scores
     c.steps = 4000
     c.batch = 512
     c.learning_rate = 3e-3
@@ -199,6 +204,7 @@ def ranker_before(r: ml_collections.ConfigDict, extra=None) -> ml_collections.Co
     only), with which the variants below were measured."""
     r.update(hidden=64, context=False)
     del r["heading_shares"]
+    del r["members"]
     if extra:
         r.extra = dict(extra)
     else:
@@ -369,6 +375,7 @@ def context(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     c.stages.ranker = ranker()  # the default's ranker config of 2026-12-04:
     c.stages.ranker.extra = dict(latin=2000, cursive=400)  # no printed words,
     del c.stages.ranker["heading_shares"]  # headings drawn as the sets come
+    del c.stages.ranker["members"]  # one ranker, as measured
     c.stages.ranker.tracer_split = "stage:splitter"
     return c
 

@@ -42,7 +42,11 @@ def test_bundled_checkpoints_are_present_and_trained():
     assert meta["config"]["name"] == "default/splitter" and meta["corners"] >= 10_000
     assert sp.reach == meta["config"]["reach"] > 0  # it joins ends through the ink
     assert sp.context and set(meta["config"]["extra"]) == {"latin", "cursive"}  # other scripts
-    assert api.load_ranker(None).context and api.load_ranker(None).hidden == 128
+    rk = json.loads((bundle.DEFAULT_BUNDLE / "ranker.json").read_text())["provenance"]
+    members = rk["config"]["members"]  # seeds fitted and bundled as one (their mean)
+    assert members == 3 and len(rk["logs"]) == members
+    assert api.load_ranker(None).context
+    assert api.load_ranker(None).hidden == members * rk["config"]["hidden"] == 384
 
 
 def test_a_first_format_splitter_still_loads(tmp_path):

@@ -253,3 +253,51 @@ def test_heading_shares_decide_whose_rule_a_ranker_learns(rng):
 
     assert heading(None) > 0  # drawn uniformly: the larger set's way
     assert heading((groups, np.array([0.1, 0.9]))) < 0  # the smaller set fills the batches
+
+
+def test_an_ensemble_scores_the_mean_of_its_members_and_keeps_it_through_its_bundle(rng, tmp_path):
+    members = [ranker.Ranker(16, context=True, rngs=nnx.Rngs(s)) for s in range(3)]
+    ens = ranker.ensemble(members)
+    assert ens.hidden == 48 and ens.context
+    tk = ranker.tokens(_bars(rng, 5))
+    ctx = ranker.drawing_context(tk)
+    i, j = np.meshgrid(np.arange(5), np.arange(5), indexing="ij")
+    x_ab = ranker.with_context(ranker.pair_inputs(tk.feats, tk.rel, i.ravel(), j.ravel()), ctx)
+    x_ba = ranker.with_context(ranker.pair_inputs(tk.feats, tk.rel, j.ravel(), i.ravel()), ctx)
+    f, rf = ranker.with_context(tk.feats, ctx), ranker.with_context(tk.rfeats, ctx)
+    tol = 1e-5  # float32 sums in another order
+    mean_pair = np.mean([np.asarray(m.pair(x_ab, x_ba)) for m in members], 0)
+    mean_heading = np.mean([np.asarray(m.heading(f, rf)) for m in members], 0)
+    np.testing.assert_allclose(ens.pair(x_ab, x_ba), mean_pair, atol=tol)
+    np.testing.assert_allclose(ens.heading(f, rf), mean_heading, atol=tol)
+    assert np.abs(mean_pair - np.asarray(members[0].pair(x_ab, x_ba))).max() > 100 * tol
+    ranker.save(ens, tmp_path)
+    back = ranker.load(tmp_path)
+    np.testing.assert_allclose(back.pair(x_ab, x_ba), mean_pair, atol=tol)
+    chars = [_bars(rng, 4), _bars(rng, 6)]
+    assert ranker.order_many(back, chars) == ranker.order_many(ens, chars)
+    with pytest.raises(ValueError, match="same width"):
+        ranker.ensemble([members[0], ranker.Ranker(8, context=True, rngs=nnx.Rngs(0))])
+
+
+def test_a_stage_with_members_fits_each_seed_and_writes_their_mean(rng):
+    import ml_collections
+
+    F, P, C = ranker.STROKE_FEATURES, ranker.PAIR_FEATURES, ranker.CONTEXT_FEATURES
+    f, rf = rng.normal(size=(50, F)).astype(np.float32), rng.normal(size=(50, F)).astype(np.float32)
+    ch, cp = rng.normal(size=(50, C)).astype(np.float32), np.zeros((16, C), np.float32)
+    x_ab = rng.normal(size=(16, P)).astype(np.float32)
+    data = (x_ab, x_ab[::-1], f, rf, (rng.random(50) < 0.5).astype(np.float32), cp, ch)
+    cfg = ml_collections.ConfigDict(
+        dict(steps=30, batch=16, learning_rate=3e-3, seed=4, context=True, hidden=8, members=2)
+    )
+    model, logs = ranker_train.fit_members(data, cfg)
+    assert model.hidden == 16 and len(logs) == 2
+    kw = dict(steps=30, batch=16, lr=3e-3, context=True, hidden=8)
+    one = [ranker_train.train_ranker(data, seed=s, **kw)[0] for s in (4, 5)]
+    x, rx = np.concatenate([f, ch], -1), np.concatenate([rf, ch], -1)
+    want = (np.asarray(one[0].heading(x, rx)) + np.asarray(one[1].heading(x, rx))) / 2
+    np.testing.assert_allclose(model.heading(x, rx), want, atol=1e-5)
+    cfg.members = 1
+    single = ranker_train.fit_members(data, cfg)[0]
+    np.testing.assert_allclose(single.heading(x, rx), one[0].heading(x, rx), atol=1e-6)

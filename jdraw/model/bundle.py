@@ -239,7 +239,7 @@ def save_net(net, out_dir, stem: str, meta: dict) -> pathlib.Path:
     """
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    np.savez(out / f"{stem}.npz", **state_arrays(net))
+    np.savez_compressed(out / f"{stem}.npz", **state_arrays(net))  # an ensemble is mostly zeros
     (out / f"{stem}.json").write_text(json.dumps(meta, indent=2) + "\n")
     return out
 

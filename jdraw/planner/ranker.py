@@ -15,6 +15,11 @@ Strokes are flipped where ``heading < 0`` and ranked by their summed pairwise
 probabilities, then adjacent swaps that raise the pairwise log-likelihood are
 made until none does. Flipping walks a stroke's pixel path backwards, so the
 plan inks exactly the same pixels.
+
+Several rankers fitted with different seeds are one ranker with their mean
+scores (:func:`ensemble`): each net of the result is as wide as theirs
+together, its second layer block-diagonal, so a bundle stores and runs it as
+any other ranker.
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ import functools
 import pathlib
 
 import jax
+import jax.numpy as jnp
 import numpy as np
 from flax import nnx
 
@@ -78,6 +84,37 @@ class Ranker(nnx.Module):
     def heading(self, f, rf):
         """Log-odds that strokes ``f [..., F]`` (reversed: ``rf``) run the right way."""
         return self.heading_net(f) - self.heading_net(rf)
+
+
+def ensemble(rankers) -> Ranker:
+    """One :class:`Ranker` whose every score is the mean of ``rankers``' scores.
+
+    Each of its two nets stacks the members' nets side by side: the first
+    layers' units are concatenated, the second layer is block-diagonal (no unit
+    sees another member's), and the output averages the members' outputs. So
+    ``pair`` and ``heading`` are exactly the members' mean, and the result is
+    ``len(rankers)`` times as wide as they are.
+    """
+    rankers = list(rankers)
+    if not rankers:
+        raise ValueError("an ensemble needs at least one ranker")
+    h, ctx = rankers[0].hidden, rankers[0].context
+    if any(r.hidden != h or r.context != ctx for r in rankers):
+        raise ValueError("the rankers of an ensemble must have the same width and inputs")
+    k = len(rankers)
+    out = Ranker(h * k, context=ctx, rngs=nnx.Rngs(0))
+    for name in ("pair_net", "heading_net"):
+        dst, src = getattr(out, name), [getattr(r, name) for r in rankers]
+        dst.l1.kernel[...] = jnp.concatenate([m.l1.kernel[...] for m in src], 1)
+        dst.l1.bias[...] = jnp.concatenate([m.l1.bias[...] for m in src])
+        w2 = jnp.zeros((h * k, h * k), dst.l2.kernel[...].dtype)
+        for i, m in enumerate(src):
+            w2 = w2.at[i * h : (i + 1) * h, i * h : (i + 1) * h].set(m.l2.kernel[...])
+        dst.l2.kernel[...] = w2
+        dst.l2.bias[...] = jnp.concatenate([m.l2.bias[...] for m in src])
+        dst.out.kernel[...] = jnp.concatenate([m.out.kernel[...] for m in src], 0) / k
+        dst.out.bias[...] = sum(m.out.bias[...] for m in src) / k
+    return out
 
 
 # ----------------------------------------------------------------------------

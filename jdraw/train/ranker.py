@@ -324,8 +324,39 @@ def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
         ) from e
 
 
+def fit_members(data, cfg, heading_draw=None):
+    """``(ranker, logs)``: :func:`train_ranker` with ``cfg``'s settings, ``cfg.members`` times.
+
+    Member ``k`` is fitted with seed ``cfg.seed + k``; more than one are returned as
+    their :func:`jdraw.planner.ranker.ensemble`, with one list of logs per member.
+    """
+    members = int(cfg.get("members", 1))
+    if members < 1:
+        raise ValueError(f"members must be 1 or more, got {members}")
+    fitted = [
+        train_ranker(
+            data,
+            steps=int(cfg.steps),
+            batch=int(cfg.batch),
+            lr=float(cfg.learning_rate),
+            seed=int(cfg.seed) + k,
+            context=bool(cfg.get("context", False)),
+            hidden=int(cfg.get("hidden", 64)),
+            heading_draw=heading_draw,
+        )
+        for k in range(members)
+    ]
+    if members == 1:
+        return fitted[0]
+    return ranker.ensemble([m for m, _ in fitted]), [lg for _, lg in fitted]
+
+
 def train(cfg, workdir, progress: bool = True) -> dict:
-    """Makes (or reuses) the examples, fits the ranker, writes it into ``cfg.out``."""
+    """Makes (or reuses) the examples, fits the ranker, writes it into ``cfg.out``.
+
+    With ``cfg.members`` = k > 1, k rankers are fitted on the same examples
+    (:func:`fit_members`) and written as one, their mean.
+    """
     workdir = pathlib.Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     (workdir / "config.json").write_text(cfg.to_json_best_effort(indent=2) + "\n")
@@ -338,16 +369,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     if cfg.get("heading_shares", None):
         names = [name for name, _, _ in chunk_jobs(cfg)]
         draw = heading_shares(paths, names, dict(cfg.heading_shares))
-    model, logs = train_ranker(
-        data,
-        steps=int(cfg.steps),
-        batch=int(cfg.batch),
-        lr=float(cfg.learning_rate),
-        seed=int(cfg.seed),
-        context=context,
-        hidden=int(cfg.get("hidden", 64)),
-        heading_draw=draw,
-    )
+    model, logs = fit_members(data, cfg, draw)
     t2 = time.time()
     result = {
         "pairs": int(len(data[0])),

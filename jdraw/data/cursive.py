@@ -309,6 +309,11 @@ def fragments(
     return KanjiSet.from_strokes(names, codes, chars, keep_turns=True)
 
 
+def _length(p: np.ndarray) -> float:
+    """Length of polyline ``p [n, 2]``."""
+    return float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
+
+
 def _prefix(strokes: list[np.ndarray], length: float) -> list[np.ndarray]:
     """The writer's strokes up to ``length`` font units of pen-down motion."""
     out = []
@@ -319,11 +324,10 @@ def _prefix(strokes: list[np.ndarray], length: float) -> list[np.ndarray]:
             out.append(p)
             length -= run[-1]
             continue
-        k = int(np.searchsorted(run, length, side="right"))  # run[k - 1] <= length < run[k]
-        t = (length - run[k - 1]) / max(seg[k - 1], 1e-9)
-        cut = np.concatenate([p[:k], (p[k - 1] + t * (p[k] - p[k - 1]))[None]])
-        if len(cut) > 1 and run[k - 1] + t * seg[k - 1] > 0:
-            out.append(cut)
+        if length > 0:  # stopped inside this stroke: up to the point that far along it
+            k = int(np.searchsorted(run, length, side="right"))  # run[k - 1] <= length < run[k]
+            t = (length - run[k - 1]) / max(seg[k - 1], 1e-9)
+            out.append(np.concatenate([p[:k], (p[k - 1] + t * (p[k] - p[k - 1]))[None]]))
         break
     return out
 
@@ -361,7 +365,7 @@ def prefixes(
         k = int(rng.integers(min(2, len(w)), min(5, len(w)) + 1))
         s = int(rng.integers(len(w) - k + 1))
         strokes = fragment_strokes(w, s, s + k)
-        total = sum(float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum()) for p in strokes)
+        total = sum(_length(p) for p in strokes)
         share = float(rng.uniform(min_share, 1.0))
         cut = [p for p in _prefix(strokes, share * total) if len(p) > 1]
         if not cut:

@@ -50,6 +50,9 @@ def get_config() -> ml_collections.ConfigDict:
     c.slant = 0.4  # fraction sheared like slanted handwriting
     c.stretch = 1.4  # lines also cut stretched along x by a factor in [1/stretch, stretch]
     c.width = 64  # px, window width (windows are reading.WINDOW = 32 px high)
+    # A line image fits its letter bodies; "all" (marks too) measured worse
+    # (docs/reading_direction.md, 2026-12-06).
+    c.span = "tall"
     c.channels = (16, 32, 48, 64)
     c.steps = 6000
     c.batch = 256

@@ -193,6 +193,52 @@ def test_stretched_lines_keep_their_height_and_ink():
     assert x.shape == (1, reading.WINDOW, 48) and ink[0] > 0
 
 
+def _word_with_dots() -> np.ndarray:
+    """A flat word body 40 px high with a round dot far over it and a dash under it."""
+    import cv2
+
+    img = np.full((260, 300), 255, np.uint8)
+    cv2.polylines(img, [np.array([[20, 120], [280, 120], [280, 160], [20, 160]])], False, 0, 5)
+    cv2.circle(img, (150, 40), 6, 0, -1)  # its centreline is one point
+    cv2.line(img, (100, 222), (100, 230), 0, 5)
+    return img
+
+
+def test_span_all_keeps_the_marks_that_span_tall_clips():
+    # Arabic dots lie far over and under a flat word body. Scaled to the bodies alone
+    # ("tall", the detectors before 2026-12-06) they fall outside the window; scaled
+    # to all the line's ink ("all") both marks are drawn, the round dot too.
+    prep = prepare(_word_with_dots())
+    (tall,) = reading.line_images(prep, "tall")
+    (full,) = reading.line_images(prep, "all")
+    assert tall.shape[0] == full.shape[0] == reading.WINDOW
+
+    def runs_of_ink_rows(line):  # blank rows split the runs
+        rows = np.flatnonzero(line.max(1) > 0.2)
+        return 1 + int(np.count_nonzero(np.diff(rows) > 1)) if len(rows) else 0
+
+    assert runs_of_ink_rows(tall) == 1  # the body alone
+    assert runs_of_ink_rows(full) == 3  # the dot, the body, the dash
+    with pytest.raises(ValueError, match="span"):
+        reading.line_images(prep, "marks")
+
+
+def test_span_is_stored_with_the_net_and_old_nets_read_tall(tmp_path):
+    import json
+
+    net = reading.DirectionNet((4, 4), width=64, span="all", rngs=nnx.Rngs(0))
+    reading.save(net, tmp_path / "new")
+    assert reading.load(tmp_path / "new").span == "all"
+    reading.save(reading.DirectionNet((4, 4), width=64, rngs=nnx.Rngs(0)), tmp_path / "old")
+    meta = tmp_path / "old" / "direction.json"
+    d = json.loads(meta.read_text())
+    del d["span"]  # as the detectors bundled before 2026-12-06 were written
+    meta.write_text(json.dumps(d))
+    assert reading.load(tmp_path / "old").span == "tall"
+    with pytest.raises(ValueError, match="span"):
+        reading.DirectionNet((4,), span="marks", rngs=nnx.Rngs(0))
+
+
 def test_threshold_and_width_are_stored_with_the_net(tmp_path):
     net = reading.DirectionNet((4, 4, 4, 4), threshold=-50.0, width=64, rngs=nnx.Rngs(0))
     reading.save(net, tmp_path)

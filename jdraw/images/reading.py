@@ -51,6 +51,7 @@ THRESHOLD = 1.5  # mean window logit above which a drawing reads right to left, 
 ASSET = pathlib.Path(__file__).resolve().parent.parent / "assets" / "reading"
 DIRECTIONS = ("ltr", "rtl")
 POOLS = ("logit", "prob", "evidence")  # how window logits become a drawing's score
+SPANS = ("tall", "all")  # what a line image is scaled to fit (see line_images)
 
 
 class DirectionNet(nnx.Module):
@@ -61,14 +62,17 @@ class DirectionNet(nnx.Module):
 
     def __init__(
         self, channels: tuple[int, ...] = (8, 16, 24), threshold: float = THRESHOLD,
-        width: int = WINDOW, pool: str = "logit", *, rngs: nnx.Rngs,
+        width: int = WINDOW, pool: str = "logit", span: str = "tall", *, rngs: nnx.Rngs,
     ):  # fmt: skip
         if pool not in POOLS:
             raise ValueError(f"pool must be one of {POOLS}, not {pool!r}")
+        if span not in SPANS:
+            raise ValueError(f"span must be one of {SPANS}, not {span!r}")
         self.channels = tuple(channels)
         self.threshold = float(threshold)  # drawing score above which it is rtl
         self.width = int(width)  # px, width of the windows it reads
         self.pool = pool  # how window logits are pooled into the drawing's score
+        self.span = span  # what its line images are scaled to fit (line_images)
         din = (1, *channels[:-1])
         self.convs = nnx.List(
             [nnx.Conv(a, b, (3, 3), padding="SAME", rngs=rngs) for a, b in zip(din, channels)]
@@ -102,14 +106,23 @@ def _component_of(points: np.ndarray, labels: np.ndarray) -> int:
     return int(np.bincount(got).argmax()) if len(got) else 0
 
 
-def line_images(prep: Prepared) -> list[np.ndarray]:
+def line_images(prep: Prepared, span: str = "tall") -> list[np.ndarray]:
     """Each text line's centrelines, drawn again ``WINDOW`` px high.
+
+    Args:
+      prep: the drawing.
+      span: what is scaled to ``LINE`` px: ``"tall"``, the line's letter bodies
+        (its tall components' top to bottom; marks beyond it are clipped, as
+        the detectors bundled until 2026-12-06 read), or ``"all"``, all its
+        ink, so that Arabic dots over and under a word stay in the window
+        (and a round dot, one point of centreline, is drawn as a pixel's line).
 
     Returns:
       ``float32 [WINDOW, w]`` images in [0, 1] (ink 1), one per text line, top
-      to bottom; the line's span (its tall components' top to bottom) is
-      scaled to ``LINE`` px, its width likewise.
+      to bottom, the width scaled as the height.
     """
+    if span not in SPANS:
+        raise ValueError(f"span must be one of {SPANS}, not {span!r}")
     from jdraw.tiling.layout import text_lines
 
     labels, boxes = _components(prep)
@@ -124,6 +137,8 @@ def line_images(prep: Prepared) -> list[np.ndarray]:
         if not len(members):  # its boxes went to an overlapping line
             continue
         x0, x1 = b[members, 0].min(), b[members, 2].max()
+        if span == "all":
+            y0, y1 = b[members, 1].min(), b[members, 3].max()
         s = LINE / max(y1 - y0 + 1.0, 1.0)
         # Rows beyond the line's span (ascenders, marks) are clipped to the window.
         img = np.zeros((WINDOW, max(int(np.ceil((x1 - x0 + 1) * s)) + 4, WINDOW)), np.uint8)
@@ -132,6 +147,8 @@ def line_images(prep: Prepared) -> list[np.ndarray]:
         for p, c in zip(prep.polylines, comp_of):
             if c in member:
                 q = np.round((p - shift) * s * 4).astype(np.int32)  # 2 fractional bits
+                if span == "all" and len(q) == 1:  # a round dot's centreline is one point
+                    q = np.concatenate([q, q + 4])
                 cv2.polylines(img, [q], False, 255, 1, cv2.LINE_AA, shift=2)
         out.append(img.astype(np.float32) / 255.0)
     return out
@@ -156,9 +173,14 @@ def windows(line: np.ndarray, width: int = WINDOW) -> tuple[np.ndarray, np.ndarr
     return x[keep], ink[keep]
 
 
-def drawing_windows(prep: Prepared, width: int = WINDOW) -> tuple[np.ndarray, np.ndarray]:
-    """All windows of a drawing's lines and their ink: ``([n, WINDOW, width], [n])``."""
-    parts = [windows(line, width) for line in line_images(prep)]
+def drawing_windows(
+    prep: Prepared, width: int = WINDOW, span: str = "tall"
+) -> tuple[np.ndarray, np.ndarray]:
+    """All windows of a drawing's lines and their ink: ``([n, WINDOW, width], [n])``.
+
+    ``span``: as :func:`line_images`.
+    """
+    parts = [windows(line, width) for line in line_images(prep, span)]
     parts = [p for p in parts if len(p[0])]
     if not parts:
         return np.zeros((0, WINDOW, width), np.float32), np.zeros(0, np.float32)
@@ -208,7 +230,7 @@ def pool_scores(logits: np.ndarray, ink: np.ndarray, pool: str = "logit") -> flo
 def rtl_score(prep: Prepared, net: DirectionNet | None = None) -> float:
     """The drawing's score (:func:`pool_scores`): above ``net.threshold`` reads right to left."""
     net = net or load()
-    x, ink = drawing_windows(prep, net.width)
+    x, ink = drawing_windows(prep, net.width, net.span)
     if len(x) == 0:
         return -np.inf
     return pool_scores(window_logits(net, x), ink, net.pool)
@@ -232,6 +254,7 @@ def save(net: DirectionNet, out_dir=ASSET, provenance: dict | None = None) -> pa
         "threshold": net.threshold,
         "width": net.width,
         "pool": net.pool,
+        "span": net.span,
         "provenance": provenance or {},
     }
     return bundle.save_net(net, out_dir, "direction", meta)
@@ -249,7 +272,7 @@ def _load(folder: str) -> DirectionNet:
     def build(meta):
         return DirectionNet(
             meta["channels"], meta.get("threshold", THRESHOLD), meta.get("width", WINDOW),
-            meta.get("pool", "logit"), rngs=nnx.Rngs(0),
+            meta.get("pool", "logit"), meta.get("span", "tall"), rngs=nnx.Rngs(0),
         )  # fmt: skip
 
     net = bundle.load_net(folder, "direction", build)

@@ -59,7 +59,7 @@ def make_examples(fonts_by_script: dict, words_per_script, sketches: int, cfg, s
     for g, (script, font) in enumerate(tqdm(jobs, desc="drawings", unit="drawing")):
         img = sample(script, font, rng, cfg)
         try:
-            lines = reading.line_images(prepare(img))
+            lines = reading.line_images(prepare(img), cfg.get("span", "tall"))
         except ValueError:  # a word too small to keep any ink
             continue
         factor = float(np.exp(rng.uniform(-1.0, 1.0) * np.log(cfg.stretch)))
@@ -165,7 +165,7 @@ def scores(net, fonts_by_script: dict, words_per_font: int, cfg, seed: int, pool
             for _ in range(words_per_font):
                 img = sample(script, font, rng, cfg)
                 try:
-                    x, ink = reading.drawing_windows(prepare(img), net.width)
+                    x, ink = reading.drawing_windows(prepare(img), net.width, net.span)
                 except ValueError:  # too little ink left to read
                     continue
                 z = reading.window_logits(net, x)
@@ -234,6 +234,8 @@ def _cached_examples(cfg, workdir, per_script: dict, fonts_by_script=None):
     want = {k: cfg.get(k) for k in keys} | {"fonts": fonts_by_script}
     if cfg.get("cursive_words", 0):
         want["cursive_words"] = cfg.cursive_words
+    if cfg.get("span", "tall") != "tall":  # older workdirs' examples keep their names
+        want["span"] = cfg.span
     tag = hashlib.sha256(json.dumps(want, sort_keys=True).encode()).hexdigest()[:16]
     path = pathlib.Path(workdir) / f"examples-{tag}.npz"
     if path.exists():
@@ -272,6 +274,7 @@ def train(cfg, workdir) -> dict:
         seed=cfg.seed, augment_strength=cfg.get("augment", 0.0), workdir=workdir,
     )  # fmt: skip
     t2 = time.perf_counter()
+    net.span = cfg.get("span", "tall")
     pool = cfg.get("pool", "logit")
     by_pool = scores(net, val_fonts, cfg.val_words_per_font, cfg, cfg.seed + 2, reading.POOLS)
     cut = {p: choose_threshold(v, cfg.max_false_rtl) for p, v in by_pool.items()}

@@ -140,7 +140,7 @@ def line_images(prep: Prepared, span: str = "tall") -> list[np.ndarray]:
         if span == "all":
             y0, y1 = b[members, 1].min(), b[members, 3].max()
         s = LINE / max(y1 - y0 + 1.0, 1.0)
-        # Rows beyond the line's span (ascenders, marks) are clipped to the window.
+        # With span "tall", rows beyond the bodies (ascenders, marks) are clipped.
         img = np.zeros((WINDOW, max(int(np.ceil((x1 - x0 + 1) * s)) + 4, WINDOW)), np.uint8)
         shift = np.array([x0, y0]) - (WINDOW - LINE) / 2 / s
         member = set((members + 1).tolist())

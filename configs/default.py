@@ -406,6 +406,46 @@ def own_retrace(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     return c
 
 
+def scribble_splitter(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """The default with its splitter also traced on 3,000 scribbles (jdraw.data.scribbles).
+
+    A scribble is one to three random pen-down curves with loops, cusps, crossings and
+    turns back over the line: every cusp and loop inside one curve is a place not to
+    cut, and every crossing of two curves one to join straight through. The local and
+    start stages are the default's, copied in as ``own_retrace`` says:
+
+      mkdir -p runs/scribble_splitter/local runs/scribble_splitter/start
+      cp -r jdraw/checkpoints/default runs/scribble_splitter/local/bundle
+      cp -r jdraw/checkpoints/default runs/scribble_splitter/start/bundle
+      python train.py --config configs/default.py:scribble_splitter --workdir runs/scribble_splitter
+
+    Not the default: it moved no dev figure by more than a word or two (40 cursive val
+    words 1.94 -> 1.92 drawn strokes per written one; Latin dev order 0.917 -> 0.899
+    with a 1-px tolerance; KanjiVG val order 0.9638 -> 0.9617). Results: docs/scripts.md.
+    """
+    c.name = "default_scribble_splitter"
+    c.stages.splitter.extra = dict(latin=1500, cursive=2000, scribble=3000)
+    return c
+
+
+def splitter_members(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """The default with five splitters as one (seeds 0 to 4 on the same traced examples).
+
+    ``members``: jdraw.train.splitter.train fits that many and writes their mean
+    (jdraw.planner.splits.ensemble), as the ranker stage does. The local and start
+    stages are the default's, copied in as ``own_retrace`` says; the splitter's
+    examples are the default's, so ``train.py`` retraces them (or reuses a workdir's).
+
+    Not the default: KanjiVG val 0.9864 / 0.9638 -> 0.9876 / 0.9658 (stroke accuracy,
+    order over all pairs), but the Latin dev glyphs' direction 0.899 -> 0.893 and
+    strokes per true stroke 1.039 -> 1.071, within what one seed's splitter swings by
+    (docs/scripts.md, 2026-12-06, evening).
+    """
+    c.name = "default_splitter_members"
+    c.stages.splitter.members = 5
+    return c
+
+
 def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     c = ml_collections.ConfigDict()
     c.name = "default"
@@ -438,10 +478,15 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         return tiny(context(c))
     if variant == "own_retrace":
         return own_retrace(c)
+    if variant == "scribble_splitter":
+        return scribble_splitter(c)
+    if variant == "splitter_members":
+        return splitter_members(c)
     if variant:
         raise ValueError(
             "configs/default.py: unknown variant "
             f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_start, "
-            "retrace, context, context_tiny, own_retrace, ranker_only or none)"
+            "retrace, context, context_tiny, own_retrace, scribble_splitter, splitter_members, "
+            "ranker_only or none)"
         )
     return c

@@ -179,6 +179,30 @@ def test_own_retrace_variant_changes_only_the_splitters_retrace_and_join_shares(
     assert sp.pop("join_shares") == {"latin": 0.1} and sp == before
 
 
+def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():
+    from configs import default
+
+    base = default.get_config().to_dict()
+    c = default.get_config("scribble_splitter").to_dict()
+    for name in ("local", "start", "ranker"):
+        assert c["stages"][name] == base["stages"][name]
+    sp, before = c["stages"]["splitter"], base["stages"]["splitter"]
+    extra = sp.pop("extra")
+    assert extra.pop("scribble") == 3000 and extra == before.pop("extra") and sp == before
+
+
+def test_splitter_members_variant_fits_five_splitters_and_changes_nothing_else():
+    from configs import default
+
+    base = default.get_config().to_dict()
+    c = default.get_config("splitter_members").to_dict()
+    for name in ("local", "start", "ranker"):
+        assert c["stages"][name] == base["stages"][name]
+    sp = c["stages"]["splitter"]
+    assert sp.pop("members") == 5 and "members" not in base["stages"]["splitter"]
+    assert sp == base["stages"]["splitter"]
+
+
 def test_context_variant_is_retraces_splitter_reading_the_context_and_the_1204_ranker():
     from configs import default
 

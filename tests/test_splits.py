@@ -352,3 +352,50 @@ def test_a_splitter_with_context_judges_the_same_corner_by_the_drawing_around_it
     blind, _ = splitter_train.fit(data, context=False, **kw)
     by_bar, by_ring = splits.split_many(blind, [[_ell(), bar], [_ell(), ring]])
     assert len(by_bar) == len(by_ring)  # without the context the corner looks the same
+
+
+def test_a_splitter_ensemble_scores_its_members_mean_through_its_bundle(tmp_path):
+    rng = np.random.default_rng(0)
+    members = [
+        splits.Splitter(hidden=8, patches=False, reach=16, context=True, rngs=nnx.Rngs(s))
+        for s in range(3)
+    ]
+    ens = splits.ensemble(members)
+    assert ens.hidden == 24 and ens.context and ens.reach == 16 and not ens.patches
+    c = CONTEXT_FEATURES
+    xs = rng.normal(size=(7, corner_geometry.GEOMETRY_FEATURES + c)).astype(np.float32)
+    xj = rng.normal(size=(5, splits.join_width(False, 16) + c)).astype(np.float32)
+    tol = 1e-5  # float32 sums in another order
+    mean_split = np.mean([np.asarray(m.split_net(xs)) for m in members], 0)
+    mean_join = np.mean([np.asarray(m.join_net(xj)) for m in members], 0)
+    np.testing.assert_allclose(ens.split_net(xs), mean_split, atol=tol)
+    np.testing.assert_allclose(ens.join_net(xj), mean_join, atol=tol)
+    assert np.abs(mean_join - np.asarray(members[0].join_net(xj))).max() > 100 * tol
+    splits.save(ens, tmp_path)
+    back = splits.load(tmp_path)
+    assert back.hidden == 24
+    np.testing.assert_allclose(back.join_net(xj), mean_join, atol=tol)
+    with pytest.raises(ValueError, match="same width"):
+        splits.ensemble([members[0], splits.Splitter(hidden=8, patches=False, rngs=nnx.Rngs(0))])
+
+
+def test_a_stage_with_members_fits_each_seed_and_writes_their_mean():
+    import ml_collections
+
+    rng = np.random.default_rng(0)
+    xs = rng.normal(size=(64, splits.CORNER_FEATURES)).astype(np.float32)
+    xj = rng.normal(size=(64, splits.JOIN_FEATURES)).astype(np.float32)
+    data = (xs, (xs[:, 0] > 0).astype(np.float32), xj, (xj[:, 1] > 0).astype(np.float32))
+    cfg = ml_collections.ConfigDict(
+        dict(steps=20, batch=16, learning_rate=3e-3, seed=4, patches=False, hidden=8, members=2)
+    )
+    model, logs = splitter_train.fit_members(data, cfg)
+    assert model.hidden == 16 and len(logs) == 2
+    kw = dict(steps=20, batch=16, lr=3e-3, patches=False, hidden=8)
+    one = [splitter_train.fit(data, seed=s, **kw)[0] for s in (4, 5)]
+    x = xj[:, : splits.join_width(False, joins.REACH)]
+    want = (np.asarray(one[0].join_net(x)) + np.asarray(one[1].join_net(x))) / 2
+    np.testing.assert_allclose(model.join_net(x), want, atol=1e-5)
+    cfg.members = 1
+    single = splitter_train.fit_members(data, cfg)[0]
+    np.testing.assert_allclose(single.join_net(x), one[0].join_net(x), atol=1e-6)

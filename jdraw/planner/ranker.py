@@ -86,13 +86,31 @@ class Ranker(nnx.Module):
         return self.heading_net(f) - self.heading_net(rf)
 
 
+def stack_mlps(dst: MLP, src, hidden: int) -> None:
+    """Sets ``dst`` (``len(src) * hidden`` wide) to the mean of the :class:`MLP` s ``src``.
+
+    The first layers' units are concatenated, the second layer is block-diagonal
+    (no unit sees another member's), and the output averages the members' outputs.
+    """
+    k = len(src)
+    dst.l1.kernel[...] = jnp.concatenate([m.l1.kernel[...] for m in src], 1)
+    dst.l1.bias[...] = jnp.concatenate([m.l1.bias[...] for m in src])
+    w2 = jnp.zeros((hidden * k, hidden * k), dst.l2.kernel[...].dtype)
+    for i, m in enumerate(src):
+        w2 = w2.at[i * hidden : (i + 1) * hidden, i * hidden : (i + 1) * hidden].set(
+            m.l2.kernel[...]
+        )
+    dst.l2.kernel[...] = w2
+    dst.l2.bias[...] = jnp.concatenate([m.l2.bias[...] for m in src])
+    dst.out.kernel[...] = jnp.concatenate([m.out.kernel[...] for m in src], 0) / k
+    dst.out.bias[...] = sum(m.out.bias[...] for m in src) / k
+
+
 def ensemble(rankers) -> Ranker:
     """One :class:`Ranker` whose every score is the mean of ``rankers``' scores.
 
-    Each of its two nets stacks the members' nets side by side: the first
-    layers' units are concatenated, the second layer is block-diagonal (no unit
-    sees another member's), and the output averages the members' outputs. So
-    ``pair`` and ``heading`` are exactly the members' mean, and the result is
+    Each of its two nets stacks the members' nets side by side (:func:`stack_mlps`),
+    so ``pair`` and ``heading`` are exactly the members' mean, and the result is
     ``len(rankers)`` times as wide as they are.
     """
     rankers = list(rankers)
@@ -101,19 +119,9 @@ def ensemble(rankers) -> Ranker:
     h, ctx = rankers[0].hidden, rankers[0].context
     if any(r.hidden != h or r.context != ctx for r in rankers):
         raise ValueError("the rankers of an ensemble must have the same width and inputs")
-    k = len(rankers)
-    out = Ranker(h * k, context=ctx, rngs=nnx.Rngs(0))
+    out = Ranker(h * len(rankers), context=ctx, rngs=nnx.Rngs(0))
     for name in ("pair_net", "heading_net"):
-        dst, src = getattr(out, name), [getattr(r, name) for r in rankers]
-        dst.l1.kernel[...] = jnp.concatenate([m.l1.kernel[...] for m in src], 1)
-        dst.l1.bias[...] = jnp.concatenate([m.l1.bias[...] for m in src])
-        w2 = jnp.zeros((h * k, h * k), dst.l2.kernel[...].dtype)
-        for i, m in enumerate(src):
-            w2 = w2.at[i * h : (i + 1) * h, i * h : (i + 1) * h].set(m.l2.kernel[...])
-        dst.l2.kernel[...] = w2
-        dst.l2.bias[...] = jnp.concatenate([m.l2.bias[...] for m in src])
-        dst.out.kernel[...] = jnp.concatenate([m.out.kernel[...] for m in src], 0) / k
-        dst.out.bias[...] = sum(m.out.bias[...] for m in src) / k
+        stack_mlps(getattr(out, name), [getattr(r, name) for r in rankers], h)
     return out
 
 

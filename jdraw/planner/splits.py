@@ -36,7 +36,7 @@ from flax import nnx
 
 from jdraw.planner.corners import GEOMETRY_FEATURES, _box, corner_features, corners, split_at
 from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_links, join_features, join_pairs
-from jdraw.planner.ranker import MLP, chunked, with_context
+from jdraw.planner.ranker import MLP, chunked, stack_mlps, with_context
 from jdraw.planner.stroke_tokens import CONTEXT_FEATURES, context, stroke_masks, tokens
 
 PATCH = 5  # pixels each side of a corner or a join the nets see of the ink and strokes
@@ -90,6 +90,29 @@ class Splitter(nnx.Module):
         c = CONTEXT_FEATURES if context else 0
         self.split_net = MLP((CORNER_FEATURES if patches else GEOMETRY_FEATURES) + c, hidden, rngs)
         self.join_net = MLP(join_width(patches, reach) + c, hidden, rngs)
+
+
+def ensemble(splitters) -> Splitter:
+    """One :class:`Splitter` whose every logit is the mean of ``splitters``' logits.
+
+    Its two nets stack the members' side by side
+    (:func:`jdraw.planner.ranker.stack_mlps`), so it is ``len(splitters)`` times as
+    wide, and it is stored and loaded as any splitter of that width.
+    """
+    splitters = list(splitters)
+    if not splitters:
+        raise ValueError("an ensemble needs at least one splitter")
+    first = splitters[0]
+    kind = (first.hidden, first.patches, first.reach, first.context, first.retrace)
+    if any((s.hidden, s.patches, s.reach, s.context, s.retrace) != kind for s in splitters):
+        raise ValueError("the splitters of an ensemble must have the same width and inputs")
+    out = Splitter(
+        first.hidden * len(splitters), first.patches, first.reach, context=first.context,
+        retrace=first.retrace, rngs=nnx.Rngs(0),
+    )  # fmt: skip
+    for name in ("split_net", "join_net"):
+        stack_mlps(getattr(out, name), [getattr(s, name) for s in splitters], first.hidden)
+    return out
 
 
 @jax.jit

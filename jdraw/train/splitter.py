@@ -148,6 +148,36 @@ def fit(
     return model, logs
 
 
+def fit_members(data, cfg, join_draw=None):
+    """``(splitter, logs)``: :func:`fit` with ``cfg``'s settings, ``cfg.members`` times.
+
+    Member ``k`` is fitted with seed ``cfg.seed + k``; more than one are returned as
+    their :func:`jdraw.planner.splits.ensemble`, with one list of logs per member.
+    """
+    members = int(cfg.get("members", 1))
+    if members < 1:
+        raise ValueError(f"members must be 1 or more, got {members}")
+    fitted = [
+        fit(
+            data,
+            steps=int(cfg.steps),
+            batch=int(cfg.batch),
+            lr=float(cfg.learning_rate),
+            seed=int(cfg.seed) + k,
+            patches=bool(cfg.get("patches", True)),
+            hidden=int(cfg.get("hidden", 64)),
+            reach=int(cfg.get("reach", joins.REACH)),
+            context=bool(cfg.get("context", False)),
+            retrace=int(cfg.get("retrace", 0)),
+            join_draw=join_draw,
+        )
+        for k in range(members)
+    ]
+    if members == 1:
+        return fitted[0]
+    return splits.ensemble([m for m, _ in fitted]), [lg for _, lg in fitted]
+
+
 def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     """Examples in chunks of ``cfg.chunk`` traced characters, one npz each, whole or not at all.
 
@@ -185,7 +215,12 @@ def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
 
 
 def train(cfg, workdir, progress: bool = True) -> dict:
-    """Makes (or reuses) the examples, fits the splitter, writes it into ``cfg.out``."""
+    """Makes (or reuses) the examples, fits the splitter, writes it into ``cfg.out``.
+
+    With ``cfg.members`` = k > 1, k splitters are fitted on the same examples (seeds
+    ``cfg.seed`` to ``cfg.seed + k - 1``) and written as one, their mean
+    (:func:`jdraw.planner.splits.ensemble`).
+    """
     workdir = pathlib.Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
     (workdir / "config.json").write_text(cfg.to_json_best_effort(indent=2) + "\n")
@@ -198,19 +233,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
     if cfg.get("join_shares", None):
         names = [name for name, _, _ in chunk_jobs(cfg)]
         draw = shares_of(set_groups(paths, names)[1], dict(cfg.join_shares), known=names)
-    model, logs = fit(
-        data,
-        steps=int(cfg.steps),
-        batch=int(cfg.batch),
-        lr=float(cfg.learning_rate),
-        seed=int(cfg.seed),
-        patches=bool(cfg.get("patches", True)),
-        hidden=int(cfg.get("hidden", 64)),
-        reach=int(cfg.get("reach", joins.REACH)),
-        context=context,
-        retrace=int(cfg.get("retrace", 0)),
-        join_draw=draw,
-    )
+    model, logs = fit_members(data, cfg, draw)
     t2 = time.time()
     result = {
         "corners": int(len(data[0])),

@@ -324,31 +324,42 @@ def load_examples(paths, context: bool = False) -> tuple[np.ndarray, ...]:
         ) from e
 
 
+def seed_members(cfg, fit_one, combine):
+    """``(net, logs)``: ``fit_one(seed)`` for seeds ``cfg.seed`` to ``cfg.seed + cfg.members - 1``.
+
+    One member is returned as fitted; more as ``combine(nets)`` (their mean, an
+    ensemble), with one list of logs per member. The ranker's and the splitter's
+    stages both fit their members this way.
+    """
+    members = int(cfg.get("members", 1))
+    if members < 1:
+        raise ValueError(f"members must be 1 or more, got {members}")
+    fitted = [fit_one(int(cfg.seed) + k) for k in range(members)]
+    if members == 1:
+        return fitted[0]
+    return combine([m for m, _ in fitted]), [lg for _, lg in fitted]
+
+
 def fit_members(data, cfg, heading_draw=None):
     """``(ranker, logs)``: :func:`train_ranker` with ``cfg``'s settings, ``cfg.members`` times.
 
     Member ``k`` is fitted with seed ``cfg.seed + k``; more than one are returned as
     their :func:`jdraw.planner.ranker.ensemble`, with one list of logs per member.
     """
-    members = int(cfg.get("members", 1))
-    if members < 1:
-        raise ValueError(f"members must be 1 or more, got {members}")
-    fitted = [
-        train_ranker(
+
+    def fit_one(seed):
+        return train_ranker(
             data,
             steps=int(cfg.steps),
             batch=int(cfg.batch),
             lr=float(cfg.learning_rate),
-            seed=int(cfg.seed) + k,
+            seed=seed,
             context=bool(cfg.get("context", False)),
             hidden=int(cfg.get("hidden", 64)),
             heading_draw=heading_draw,
         )
-        for k in range(members)
-    ]
-    if members == 1:
-        return fitted[0]
-    return ranker.ensemble([m for m, _ in fitted]), [lg for _, lg in fitted]
+
+    return seed_members(cfg, fit_one, ranker.ensemble)
 
 
 def train(cfg, workdir, progress: bool = True) -> dict:

@@ -26,7 +26,14 @@ import optax
 from flax import nnx
 
 from jdraw.planner import corners, joins, splits
-from jdraw.train.ranker import chunk_jobs, made_chunks, read_chunks, set_groups, shares_of
+from jdraw.train.ranker import (
+    chunk_jobs,
+    made_chunks,
+    read_chunks,
+    seed_members,
+    set_groups,
+    shares_of,
+)
 
 
 def examples(
@@ -152,18 +159,17 @@ def fit_members(data, cfg, join_draw=None):
     """``(splitter, logs)``: :func:`fit` with ``cfg``'s settings, ``cfg.members`` times.
 
     Member ``k`` is fitted with seed ``cfg.seed + k``; more than one are returned as
-    their :func:`jdraw.planner.splits.ensemble`, with one list of logs per member.
+    their :func:`jdraw.planner.splits.ensemble`
+    (:func:`jdraw.train.ranker.seed_members`, as the ranker's are).
     """
-    members = int(cfg.get("members", 1))
-    if members < 1:
-        raise ValueError(f"members must be 1 or more, got {members}")
-    fitted = [
-        fit(
+
+    def fit_one(seed):
+        return fit(
             data,
             steps=int(cfg.steps),
             batch=int(cfg.batch),
             lr=float(cfg.learning_rate),
-            seed=int(cfg.seed) + k,
+            seed=seed,
             patches=bool(cfg.get("patches", True)),
             hidden=int(cfg.get("hidden", 64)),
             reach=int(cfg.get("reach", joins.REACH)),
@@ -171,11 +177,8 @@ def fit_members(data, cfg, join_draw=None):
             retrace=int(cfg.get("retrace", 0)),
             join_draw=join_draw,
         )
-        for k in range(members)
-    ]
-    if members == 1:
-        return fitted[0]
-    return splits.ensemble([m for m, _ in fitted]), [lg for _, lg in fitted]
+
+    return seed_members(cfg, fit_one, splits.ensemble)
 
 
 def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:

@@ -110,6 +110,7 @@ def _plan_options(args) -> dict:
         polarity=args.polarity,
         min_gap=args.min_gap,
         split=False if args.no_split else None,
+        retrace=not args.no_retrace,
         max_pixels=args.max_mpx * 1e6,
         direction=None if args.direction == "auto" else args.direction,
     )

@@ -165,6 +165,13 @@ def parser() -> argparse.ArgumentParser:
         "and joining of ends (trained on kanji, it may cut a Latin e at its bar)",
     )
     pl.add_argument(
+        "--no-retrace",
+        action="store_true",
+        help="in joined-up writing (a cursive word, a joined Arabic piece) never go back over "
+        "a drawn line to save a pen lift, as the writer would (for a pen that blots where it "
+        "passes twice)",
+    )
+    pl.add_argument(
         "--direction",
         choices=("auto", "ltr", "rtl"),
         default="auto",

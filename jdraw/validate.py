@@ -42,14 +42,15 @@ def one_line(message: object) -> str:
 # ----------------------------------------------------------------------------- scalars
 
 
-def positive_int(name: str, value, *, optional: bool = False) -> int | None:
-    """``value`` as an ``int >= 1``; ``None`` passes when ``optional``."""
+def positive_int(name: str, value, *, optional: bool = False, zero: bool = False) -> int | None:
+    """``value`` as an ``int >= 1`` (``>= 0`` with ``zero``); ``None`` passes when ``optional``."""
     if value is None and optional:
         return None
+    what = "a non-negative" if zero else "a positive"
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise InputError(f"{name} must be a positive integer, got {value!r}")
-    if value < 1:
-        raise InputError(f"{name} must be a positive integer, got {value}")
+        raise InputError(f"{name} must be {what} integer, got {value!r}")
+    if value < (0 if zero else 1):
+        raise InputError(f"{name} must be {what} integer, got {value}")
     return int(value)
 
 

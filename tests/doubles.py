@@ -9,13 +9,13 @@ from jdraw.images.skeleton import skeleton_polylines
 from jdraw.plans import Plan
 
 
-def trace_planner(images, *, checkpoint=None, max_steps=None, direction="ltr"):
+def trace_planner(images, *, checkpoint=None, max_steps=None, direction="ltr", retrace=None):
     """A stand-in for :func:`jdraw.plan` without a model: every skeleton chain is one stroke.
 
     Same signature and output type as :func:`jdraw.plan`; ``images`` is
-    ``[B, 100, 100]`` or ``[100, 100]``; ``checkpoint``, ``max_steps`` and
+    ``[B, 100, 100]`` or ``[100, 100]``; ``checkpoint``, ``max_steps``,
     ``direction`` (``plan_image`` passes ``"rtl"`` for an image read right to
-    left) are ignored.
+    left) and ``retrace`` (passed for joined-up writing) are ignored.
     """
     imgs = np.asarray(images)
     if imgs.ndim == 2:

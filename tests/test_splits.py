@@ -155,6 +155,11 @@ def test_long_links_go_back_over_their_own_line_only(tmp_path):
     assert {(20, 50), (20, 90)} <= {tuple(q) for q in one} and tuple(one[-1]) == (45, 95)
     sp.retrace = 0
     assert len(splits.join_many(sp, [[stem, leave]], [ink])[0]) == 2
+    # Asked for per call (jdraw.plan's retrace=, plan_image's joined-up writing), the
+    # same join as the splitter's own; asked for 0, none.
+    asked = splits.join_many(sp, [[stem, leave]], [ink], retrace=40)[0]
+    assert len(asked) == 1 and np.array_equal(asked[0], one)
+    assert len(splits.join_many(back, [[stem, leave]], [ink], retrace=0)[0]) == 2
 
 
 def test_edit_plan_follows_the_nets_and_inks_the_same_pixels():
@@ -294,6 +299,10 @@ def test_plan_refuses_split_without_a_splitter():
 
     with pytest.raises(ValueError, match="splitter"):
         api.plan(np.zeros((1, 100, 100), bool), checkpoint="jdraw/checkpoints/paper", split=True)
+    with pytest.raises(ValueError, match="retrace.*splitter"):
+        api.plan(np.zeros((1, 100, 100), bool), checkpoint="jdraw/checkpoints/paper", retrace=40)
+    with pytest.raises(ValueError, match="retrace must be a non-negative integer"):
+        api.plan(np.zeros((1, 100, 100), bool), retrace=-1)
 
 
 def test_plan_takes_a_splitter_from_a_folder(tmp_path):

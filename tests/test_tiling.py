@@ -1,5 +1,6 @@
 """Drawings beyond one canvas: layout, stitching across tile borders, reading order."""
 
+import cv2
 import numpy as np
 import pytest
 
@@ -254,3 +255,79 @@ def test_character_sized_image_is_fitted_to_one_canvas():
     prep = prepare(load_image(path))
     _, tiles, regions = layout.layout(prep)
     assert len(tiles) == 1 and len(regions) == 1
+
+
+def _word_and_letters(thickness: int = 1) -> tuple[np.ndarray, list[np.ndarray]]:
+    """``uint8 [120, 430]`` with 255 ink: a joined-up word and printed letters on one line.
+
+    The word: five humps 30 px high (its x-height) and a loop rising 50 px above them,
+    one line of ink 200 px long. The letters, as high: two rings, an m (two arches, 50
+    px wide) and a dot over it. Returns the image and the word's and letters' lines.
+    """
+    x = np.arange(10, 211, dtype=np.float64)
+    word = [np.stack([x, 80 - 30 * np.abs(np.sin(np.pi * (x - 10) / 40))], 1)]
+    t = np.linspace(0, 2 * np.pi, 60)
+    word.append(np.stack([110 + 8 * np.sin(t), 50 - 25 * (1 - np.cos(t))], 1))  # the loop
+    rings = [np.stack([255 + 15 * np.cos(t), 65 + 15 * np.sin(t)], 1) + [40 * k, 0] for k in (0, 1)]
+    xm = np.arange(320, 371, dtype=np.float64)
+    m = np.stack([xm, 80 - 30 * np.abs(np.sin(np.pi * (xm - 320) / 50))], 1)
+    dot = np.array([[345.0, 35.0], [346.0, 36.0]])
+    img = np.zeros((120, 430), np.uint8)
+    for p in [*word, *rings, m, dot]:
+        cv2.polylines(img, [np.rint(p).astype(np.int32)], False, 255, thickness)
+    return img, word
+
+
+def test_a_piece_running_through_several_letters_is_joined_up_writing():
+    img, _ = _word_and_letters()
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(
+        (img > 0).astype(np.uint8), connectivity=8
+    )
+    joined = layout.joined_pieces(labels, stats)
+    left = np.argsort(stats[1:, cv2.CC_STAT_LEFT])  # word, two rings, m, dot
+    assert n == 6 and joined[left].tolist() == [True, False, False, False, False]
+    # The line's core is its x-height (the loop above it holds little ink): the word is
+    # joined at 2.5 times it, and not by its box, which the loop makes 80 px high.
+    word = left[0]
+    assert stats[word + 1, cv2.CC_STAT_HEIGHT] * layout.JOINED_WIDTH > stats[word + 1, 2]
+    # Squares the size of a kanji, side by side: their core is their whole height.
+    squares = np.zeros((80, 300), np.uint8)
+    for k in range(4):
+        cv2.rectangle(squares, (10 + 70 * k, 10), (70 + 70 * k, 70), 1, 1)
+    _, labels, stats, _ = cv2.connectedComponentsWithStats(squares, connectivity=8)
+    assert not layout.joined_pieces(labels, stats).any()
+
+
+def test_joined_up_writing_is_planned_with_joins_back_over_its_line(monkeypatch, tmp_path):
+    """plan_image asks the default planner for ``retrace`` in joined-up writing's tiles
+    only, and never where the plan has no splitter or is told not to."""
+    from jdraw.planner.splits import JOINED_RETRACE
+
+    img, _ = _word_and_letters(thickness=3)
+    calls = []
+
+    def recording(images, **kwargs):
+        calls.append((kwargs.get("retrace"), int(np.asarray(images).any(axis=(1, 2)).sum())))
+        return trace_planner(images, **{k: v for k, v in kwargs.items() if k != "split"})
+
+    monkeypatch.setattr(tiling, "default_planner", recording)
+    plan = tiling.plan_image(255 - img, polarity="dark", progress=False)
+    joined = sum(t.joined for t in plan.tiles)
+    assert 0 < joined < len(plan.tiles)
+    assert sum(n for r, n in calls if r == JOINED_RETRACE) == joined
+    assert sum(n for r, n in calls if r is None) == len(plan.tiles) - joined
+    for off in (dict(split=False), dict(retrace=False)):
+        calls.clear()
+        tiling.plan_image(255 - img, polarity="dark", progress=False, **off)
+        assert {r for r, _ in calls} == {None}
+    with pytest.raises(ValueError, match="retrace must be True or False"):
+        tiling.plan_image(255 - img, progress=False, retrace=40)
+    # jdraw draw --no-retrace reaches it.
+    from jdraw import cli
+
+    path = tmp_path / "word.png"
+    cv2.imwrite(str(path), 255 - img)
+    for flags, want in (([], {None, JOINED_RETRACE}), (["--no-retrace"], {None})):
+        calls.clear()
+        assert cli.main(["draw", str(path), "--no-progress", *flags]) == 0
+        assert {r for r, _ in calls} == want

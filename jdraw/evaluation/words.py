@@ -158,6 +158,7 @@ def evaluate_words(
     checkpoint=None,
     split_strokes: bool | None = None,
     progress: bool = True,
+    retrace: bool = True,
 ) -> dict:
     """Plans the first ``n`` words of ``split`` (all if ``None``) and scores them.
 
@@ -165,6 +166,8 @@ def evaluate_words(
       checkpoint: passed to :func:`jdraw.plan_image` (``None``: the bundled default).
       split_strokes: ``plan_image``'s ``split=`` (the learned splitter; ``None``: as
         the checkpoint says).
+      retrace: ``plan_image``'s ``retrace=`` (joins back over the line in joined-up
+        writing).
 
     Returns:
       the means over words (module docstring), ``n``, ``seconds`` and ``words``:
@@ -181,7 +184,12 @@ def evaluate_words(
         h = word_height(w)
         img, written = render_word(w, h)
         plan = plan_image(
-            img, checkpoint=checkpoint, polarity="dark", progress=False, split=split_strokes
+            img,
+            checkpoint=checkpoint,
+            polarity="dark",
+            progress=False,
+            split=split_strokes,
+            retrace=retrace,
         )
         per.append({"word": w, "height": h, **score_word(img < 128, written, plan.strokes)})
     mean = lambda k: float(np.nanmean([p[k] for p in per])) if per else float("nan")  # noqa: E731
@@ -189,6 +197,7 @@ def evaluate_words(
         "split": split,
         "n": len(per),
         "checkpoint": str(checkpoint) if checkpoint is not None else "bundled default",
+        "retrace": retrace,
         "stroke_ratio": mean("stroke_ratio"),
         "stroke_ratio_total": sum(p["drawn"] for p in per) / max(sum(p["written"] for p in per), 1),
         "strokes_per_piece": mean("strokes_per_piece"),
@@ -229,8 +238,13 @@ def main(argv=None):
     p.add_argument("--n", type=int, default=40, help="first N words of the split (0: all)")
     p.add_argument("--checkpoint", default=None, help="bundle folder (default: bundled)")
     p.add_argument("--out", default=None, help="write the results here as JSON")
+    p.add_argument(
+        "--no-retrace",
+        action="store_true",
+        help="plan_image(retrace=False): no joins back over the line in joined-up writing",
+    )
     a = p.parse_args(argv)
-    res = evaluate_words(a.split, a.n or None, checkpoint=a.checkpoint)
+    res = evaluate_words(a.split, a.n or None, checkpoint=a.checkpoint, retrace=not a.no_retrace)
     print(summary(res))
     if a.out:
         pathlib.Path(a.out).write_text(json.dumps(res, indent=2) + "\n")

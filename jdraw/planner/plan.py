@@ -250,6 +250,7 @@ def plan(
     join: bool | None = None,
     split: bool | str | os.PathLike | None = None,
     direction: str = "ltr",
+    retrace: int | None = None,
 ) -> Plan:
     """Plans how to draw each image.
 
@@ -290,6 +291,12 @@ def plan(
       direction: ``"ltr"`` or ``"rtl"``: the reading direction the ranker
         orders strokes in (``"rtl"``: as for the mirrored image, see
         :func:`jdraw.planner.ranker.reorder`); the strokes traced are the same.
+      retrace: how many moves back over a stroke's own line the splitter's joins
+        may go (``None``: the splitter's own, 0 for the bundled default), as a
+        writer of joined-up script goes back up a stem or a loop; strokes are
+        joined there only where its join net says so. :func:`jdraw.plan_image`
+        asks for :data:`jdraw.planner.splits.JOINED_RETRACE` where the ink is
+        joined-up writing. Needs a splitter.
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.
@@ -310,6 +317,7 @@ def plan(
     validate.choice("direction", direction, ("ltr", "rtl"))
     batch_size = validate.positive_int("batch_size", batch_size)
     global_batch = validate.positive_int("global_batch", global_batch)
+    retrace = validate.positive_int("retrace", retrace, optional=True, zero=True)
     model = load_model(validate.checkpoint(checkpoint))
     if isinstance(split, (str, os.PathLike)):
         sp = _splitter_in(split)
@@ -319,6 +327,8 @@ def plan(
         sp = load_splitter(checkpoint) if split is not False else None
     if split is True and sp is None:
         raise ValueError("split=True needs a checkpoint with a stroke splitter; this one has none")
+    if retrace and sp is None:
+        raise ValueError("retrace= joins through the stroke splitter; this plan has none")
     labels = np.stack([state.component_labels(t) for t in targets])
     kind = getattr(model, "kind", "two_scale")
     if loop == "slots" and kind != "global_only":  # the global-only ablation keeps vmap
@@ -342,7 +352,9 @@ def plan(
     if sp is not None:
         from jdraw.planner import splits
 
-        result = splits.edit_plan(result, sp, targets, max_rows=limits.max_steps, drawn=drawn)
+        result = splits.edit_plan(
+            result, sp, targets, max_rows=limits.max_steps, drawn=drawn, retrace=retrace
+        )
     rk = load_ranker(checkpoint) if order in ("auto", "ranker") else None
     if order == "auto":
         order = "ranker" if rk is not None else "model"

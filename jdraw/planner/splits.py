@@ -44,6 +44,10 @@ _SIDE = 2 * PATCH + 1
 CORNER_FEATURES = GEOMETRY_FEATURES + 3 * _SIDE * _SIDE  # with the patches (all_corners)
 JOIN_FEATURES = JOIN_GEOMETRY + 3 * _SIDE * _SIDE
 NEAR_GEOMETRY = JOIN_GEOMETRY - 2  # a joiner of near ends only (reach 0) lacks the bridge's two
+# Moves back over a stroke's own line a join may go in joined-up writing (jdraw.plan's
+# ``retrace``, asked by jdraw.plan_image for such tiles): the reach that own-line joins
+# were first trained and measured with (docs/scripts.md, 2026-12-05).
+JOINED_RETRACE = 40
 
 
 def join_width(patches: bool, reach: int) -> int:
@@ -229,15 +233,25 @@ def split_many(
     return out
 
 
-def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: float = 0.0):
+def join_many(
+    splitter: Splitter,
+    characters,
+    inks=None,
+    drawn=None,
+    threshold: float = 0.0,
+    retrace: int | None = None,
+):
     """Each character's strokes, the end pairs the join net scores above ``threshold`` joined.
 
-    ``inks``: the ink planned (joins stay on it); ``drawn``: the ink as drawn.
+    ``inks``: the ink planned (joins stay on it); ``drawn``: the ink as drawn;
+    ``retrace``: how far back over a stroke's own line a join may go (``None``: the
+    splitter's own).
     """
     inks = [None] * len(characters) if inks is None else inks
     drawn = [None] * len(characters) if drawn is None else drawn
+    retrace = splitter.retrace if retrace is None else int(retrace)
     found = [
-        all_pairs(s, ink, d, splitter.patches, splitter.reach, splitter.retrace)
+        all_pairs(s, ink, d, splitter.patches, splitter.reach, retrace)
         for s, ink, d in zip(characters, inks, drawn)
     ]
     on = splitter.context
@@ -249,7 +263,7 @@ def join_many(splitter: Splitter, characters, inks=None, drawn=None, threshold: 
         z = logit[at : at + len(pairs)]
         at += len(pairs)
         chosen = [pairs[k] for k in np.argsort(-z) if z[k] > threshold]
-        reach = max(splitter.reach, splitter.retrace)
+        reach = max(splitter.reach, retrace)
         out.append(join_pairs(strokes, chosen, ink, reach) if chosen else list(strokes))
     return out
 
@@ -273,12 +287,20 @@ def drop_covered(strokes) -> list:
     return [s for s, kept in zip(strokes, keep) if kept]
 
 
-def edit_plan(plan, splitter: Splitter, targets=None, max_rows: int | None = None, drawn=None):
+def edit_plan(
+    plan,
+    splitter: Splitter,
+    targets=None,
+    max_rows: int | None = None,
+    drawn=None,
+    retrace: int | None = None,
+):
     """A :class:`jdraw.Plan` with strokes cut at corners, joined where one line goes on.
 
     Strokes are cut (:func:`split_many`), then joined (:func:`join_many`;
     ``targets``, the ink planned, keeps joins on ink; ``drawn``, the images as
-    given before they were canonicalised, shows the nets the pen's outline),
+    given before they were canonicalised, shows the nets the pen's outline;
+    ``retrace``, how far back over a stroke's own line a join may go),
     then strokes drawn over by others are dropped (:func:`drop_covered`) and
     crumbs of a few pixels are drawn as part of the stroke they touch
     (:func:`jdraw.planner.joins.absorb_crumbs`). An image whose edited strokes
@@ -290,7 +312,7 @@ def edit_plan(plan, splitter: Splitter, targets=None, max_rows: int | None = Non
     drawn = None if drawn is None else [np.asarray(d, bool) for d in drawn]
     cut = split_many(splitter, plan.strokes, drawn)
     inks = None if targets is None else [np.asarray(t, bool) for t in targets]
-    new = join_many(splitter, cut, inks, drawn)
+    new = join_many(splitter, cut, inks, drawn, retrace=retrace)
     strokes = []
     for old, s in zip(plan.strokes, new):
         s = absorb_crumbs(drop_covered(s))

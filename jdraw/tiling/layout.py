@@ -5,6 +5,8 @@ separable is fitted to one ``100 x 100`` canvas, as for a character. Otherwise
 its centrelines are drawn on one large canvas at that scale, split into
 connected regions (a cursive word, a printed letter, a sketch), and every
 region wider or taller than a canvas is laid out as a grid of canvas-sized tiles.
+A region much wider than its text line is high is joined-up writing
+(:func:`joined_pieces`), and its tiles say so.
 """
 
 from __future__ import annotations
@@ -28,6 +30,10 @@ from jdraw.images.prepare import Prepared
 CANVAS = geometry.CANVAS
 # A drawing that fits one canvas at this fraction of the separable scale is fitted, not tiled.
 FIT_SLACK = 0.7
+# A piece of ink at least this many times as wide as its text line's core is high (about
+# its x-height; a printed m is under 2) runs through three or more letters: joined-up
+# writing (a cursive word, a joined Arabic piece; :func:`joined_pieces`).
+JOINED_WIDTH = 2.5
 
 
 @dataclasses.dataclass(frozen=True)
@@ -38,11 +44,15 @@ class Tile:
       region: index of the region it belongs to.
       transform: input pixels -> this tile's canvas pixels.
       image: ``bool [100, 100]`` what the planner is given.
+      joined: its ink is joined-up writing (:func:`joined_pieces`): the planner may
+        join its strokes back over their own line, as such a writer goes back
+        up a stem (:data:`jdraw.planner.splits.JOINED_RETRACE`).
     """
 
     region: int
     transform: CanvasTransform
     image: np.ndarray
+    joined: bool = False
 
 
 def choose_scale(prep: Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
@@ -87,6 +97,35 @@ def tall_boxes(boxes: np.ndarray) -> np.ndarray:
     cum = np.cumsum(h)
     typical = h[np.searchsorted(cum, 0.5 * cum[-1])]
     return np.maximum(heights, widths) >= 0.5 * typical
+
+
+def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
+    """``bool [n]``: which connected pieces of centrelines are joined-up writing.
+
+    ``labels`` and ``stats`` are ``cv2.connectedComponentsWithStats``' of the
+    centrelines (piece ``k`` is label ``k + 1``). A piece at least
+    :data:`JOINED_WIDTH` times as wide as its text line's core is high runs through
+    several letters: a cursive word, a joined piece of Arabic, a Devanagari word
+    under its headline. The core is the band of rows that cross at least half as
+    many lines as the row that crosses most: a line of letters' x-height band, which
+    every letter crosses and only the tall ones rise above, and most of a line of
+    kanji. A printed letter, a kanji's part or a dot is narrower; a long flat piece
+    (a dash, a kanji's one bar) may count, and being one straight line it has no
+    strokes to join back over it.
+    """
+    x, y, w, h = (stats[1:, k].astype(np.int64) for k in range(4))
+    out = np.zeros(len(x), bool)
+    if not len(x):
+        return out
+    line_of, _ = text_lines(np.stack([x, y, x + w - 1, y + h - 1], 1))
+    for k in np.unique(line_of):
+        on = line_of == k
+        y0, y1 = int(y[on].min()), int((y + h)[on].max())
+        rows = np.isin(labels[y0:y1], np.flatnonzero(on) + 1)
+        crossings = np.count_nonzero(rows[:, 1:] & ~rows[:, :-1], axis=1) + rows[:, 0]
+        core = np.count_nonzero(crossings >= 0.5 * crossings.max())
+        out[on] = w[on] >= JOINED_WIDTH * max(core, 1)
+    return out
 
 
 def text_lines(
@@ -177,7 +216,8 @@ def layout(
     if single:
         tf = fit_transform(ink_bbox(prep.polylines))
         canvas = render_polylines(prep.polylines, tf, (CANVAS, CANVAS))
-        return scale, [Tile(0, tf, canvas)], [ink_bbox(prep.polylines)]
+        joined = _mostly_joined(prep.skeleton)
+        return scale, [Tile(0, tf, canvas, joined)], [ink_bbox(prep.polylines)]
     h, w = prep.shape
     whole = CanvasTransform(scale)
     big = render_polylines(
@@ -190,6 +230,7 @@ def layout(
     for k in range(1, n):
         x, y, bw, bh = stats[k, :4]
         boxes.append(tuple(whole.to_input([[x, y], [x + bw - 1, y + bh - 1]]).ravel()))
+    joined = joined_pieces(labels, stats)
     tiles: list[Tile] = []
     regions = []
     for r, i in enumerate(_reading_order(boxes, rtl)):
@@ -208,8 +249,19 @@ def layout(
             ox, oy = gx + cx * CANVAS, gy + cy * CANVAS
             tile = _crop(mask, ox, oy)
             if tile.any():
-                tiles.append(Tile(r, whole.shifted(ox, oy), tile))
+                tiles.append(Tile(r, whole.shifted(ox, oy), tile, bool(joined[i])))
     return scale, tiles, regions
+
+
+def _mostly_joined(lines: np.ndarray) -> bool:
+    """Whether most centreline pixels of ``lines`` are joined-up writing (:func:`joined_pieces`)."""
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(
+        np.asarray(lines, np.uint8), connectivity=8
+    )
+    if n < 2:
+        return False
+    area = stats[1:, cv2.CC_STAT_AREA]
+    return bool(area[joined_pieces(labels, stats)].sum() * 2 > area.sum())
 
 
 def _crop(img: np.ndarray, ox: int, oy: int) -> np.ndarray:

@@ -50,6 +50,7 @@ def plan_images(
     max_pixels: float | None = MAX_PIXELS,
     pixel_flag: str = "max_pixels=",
     direction: str | None = None,
+    retrace: bool = True,
 ) -> Iterator[ImagePlan | Exception]:
     """Plans many images in one stream: each image's plan (or its error), in input order.
 
@@ -81,6 +82,7 @@ def plan_images(
         simplify_tol,
         direction,
         default_planner,
+        retrace,
     )
     items = list(images) if not isinstance(images, Iterator) else images
     total = len(items) if isinstance(items, list) else None
@@ -140,6 +142,7 @@ def plan_image(
     split: bool | None = None,
     max_pixels: float | None = MAX_PIXELS,
     direction: str | None = None,
+    retrace: bool = True,
 ) -> ImagePlan | list[ImagePlan]:
     """Plans how to draw an image of any size; strokes in input pixel coordinates.
 
@@ -174,6 +177,13 @@ def plan_image(
         line and the strokes of a tile ordered right to left, the latter only
         with the default planner) or ``None``: read from each image
         (:func:`jdraw.images.reading.detect`).
+      retrace: in joined-up writing (a region much wider than its line's
+        x-height: a cursive word, a joined Arabic piece;
+        :func:`jdraw.tiling.layout.joined_pieces`) let the splitter's joins go
+        back over a stroke's own line, as the writer goes back up a stem
+        (``jdraw.plan``'s ``retrace=``, :data:`jdraw.planner.splits.JOINED_RETRACE`
+        moves): fewer pen lifts, some lines drawn twice. ``False``: never there
+        (for a pen that blots where it passes twice). Only with the default planner.
 
     Raises:
       jdraw.images.load.ImageError: unreadable, blank or too big
@@ -192,6 +202,7 @@ def plan_image(
         split=split,
         max_pixels=max_pixels,
         direction=direction,
+        retrace=retrace,
     )
     if isinstance(image, list | tuple):
         plans = []
@@ -211,6 +222,7 @@ def plan_image(
         simplify_tol,
         direction,
         default_planner,
+        retrace,
     )
     job = _lay_out(image, cfg["polarity"], cfg["min_gap"], max_pixels, direction=cfg["direction"])
     batches = range(0, len(job.tiles), cfg["batch_size"])

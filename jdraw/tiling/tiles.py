@@ -70,10 +70,14 @@ class ImagePlan:
         return float(sum(np.hypot(*np.diff(s, axis=0).T).sum() for s in self.strokes if len(s) > 1))
 
 
-def _run_planner(planner, images, checkpoint, max_steps, split=None, batch_size=16, direction=None):
+def _run_planner(
+    planner, images, checkpoint, max_steps, split=None, batch_size=16, direction=None, retrace=None
+):
     kwargs = {} if split is None else {"split": split}
     if direction is not None:
         kwargs["direction"] = direction
+    if retrace is not None:
+        kwargs["retrace"] = retrace
     if checkpoint is not None:
         kwargs["checkpoint"] = checkpoint
     if max_steps is not None:
@@ -141,14 +145,20 @@ def _settings(
     simplify_tol,
     direction,
     default,
+    retrace=True,
 ):
     """Checked settings; ``default`` is the planner used when ``planner`` is None."""
     if direction is not None:
         validate.choice("direction", direction, ("ltr", "rtl"))
+    if not isinstance(retrace, bool):
+        raise validate.InputError(f"retrace must be True or False, got {retrace!r}")
     own = planner is None
+    asked = retrace
+    retrace = None
     if own:
         planner = default
         checkpoint = validate.checkpoint(checkpoint)
+        retrace = _joined_retrace(checkpoint, split) if asked else None
     elif split is not None:
         raise validate.InputError("split= is jdraw.plan's option; give it to your planner")
     return dict(
@@ -162,7 +172,26 @@ def _settings(
         simplify_tol=validate.positive("simplify_tol", simplify_tol, zero=True),
         direction=direction,
         own=own,
+        retrace=retrace,
     )
+
+
+def _joined_retrace(checkpoint, split) -> int | None:
+    """The ``retrace`` the default planner is asked for in joined-up writing's tiles.
+
+    :data:`jdraw.planner.splits.JOINED_RETRACE` when the plan runs a splitter whose
+    own reach back over a line is shorter, else ``None`` (no splitter, none asked for,
+    or one that already goes that far).
+    """
+    from jdraw.planner import plan as api
+    from jdraw.planner.splits import JOINED_RETRACE
+
+    if split is False:
+        return None
+    sp = api._splitter_in(split) if isinstance(split, str | os.PathLike) else None
+    if sp is None:
+        sp = api.load_splitter(checkpoint)
+    return JOINED_RETRACE if sp is not None and sp.retrace < JOINED_RETRACE else None
 
 
 def _lay_out(
@@ -190,14 +219,21 @@ def _plan_tiles(pending: list[tuple[_Job, int]], cfg: dict) -> None:
     """Plans ``pending`` tiles (job, tile index; of one or more images) in one planner call.
 
     Fills each tile's strokes into its job. Tiles of images read right to left
-    go in a call of their own, whose ranker orders right to left (the default
-    planner only; a custom one is left as is).
+    go in a call of their own, whose ranker orders right to left, and tiles of
+    joined-up writing (:attr:`Tile.joined`) in one whose joins may go back over a
+    stroke's own line (``cfg["retrace"]``); the default planner only, a custom
+    one is called as is.
     """
     own = cfg["own"]
     pending = [(job, i, job.tiles[i]) for job, i in pending]
-    groups = [[p for p in pending if p[0].direction == d] for d in ("ltr", "rtl")]
+    retrace = cfg.get("retrace")
+    kinds = [(d, j) for d in ("ltr", "rtl") for j in (False, True)]
+    groups = [
+        [p for p in pending if p[0].direction == d and (p[2].joined and retrace is not None) == j]
+        for d, j in kinds
+    ]
     results = {}
-    for d, group in zip(("ltr", "rtl"), groups):
+    for (d, j), group in zip(kinds, groups):
         if not group:
             continue
         strokes, trunc = _run_planner(
@@ -208,6 +244,7 @@ def _plan_tiles(pending: list[tuple[_Job, int]], cfg: dict) -> None:
             cfg["split"],
             cfg["batch_size"],
             "rtl" if d == "rtl" and own else None,
+            retrace if j else None,
         )
         for p, s, tr in zip(group, strokes, trunc, strict=True):
             results[id(p[2])] = (s, tr)

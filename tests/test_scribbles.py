@@ -179,6 +179,18 @@ def test_own_retrace_variant_changes_only_the_splitters_retrace_and_join_shares(
     assert sp.pop("join_shares") == {"latin": 0.1} and sp == before
 
 
+def test_joined_retrace_variant_is_own_retrace_learned_and_asked_in_joined_writing_only():
+    from configs import default
+
+    own = default.get_config("own_retrace").to_dict()
+    c = default.get_config("joined_retrace").to_dict()
+    for name in ("local", "start", "ranker"):
+        assert c["stages"][name] == own["stages"][name]
+    sp = c["stages"]["splitter"]
+    assert sp.pop("retrace_where") == "joined" and sp.pop("bundle_retrace") == 0
+    assert sp == own["stages"]["splitter"]
+
+
 def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():
     from configs import default
 

@@ -408,3 +408,46 @@ def test_a_stage_with_members_fits_each_seed_and_writes_their_mean():
     cfg.members = 1
     single = splitter_train.fit_members(data, cfg)[0]
     np.testing.assert_allclose(single.join_net(x), one[0].join_net(x), atol=1e-6)
+
+
+def test_long_join_examples_only_where_plan_image_asks_for_them():
+    """``retrace_where="joined"``: end pairs back over a stroke's own line are examples
+    in joined-up writing only, as plan_image asks for them there only."""
+    x = np.arange(10, 91, dtype=np.float64)  # humps 12 px high running 80 px: joined-up
+    wave = geometry.render_strokes([np.stack([x, 60 - 12 * np.abs(np.sin(np.pi * x / 16))], 1)])
+    square = geometry.render_strokes([_line(20, 20, 80, 20), _line(80, 20, 80, 80)])
+    square |= geometry.render_strokes([_line(20, 20, 20, 80), _line(20, 80, 80, 80)])
+    assert splitter_train.retrace_for(wave, 40, "joined") == 40
+    assert splitter_train.retrace_for(square, 40, "joined") == 0
+    assert splitter_train.retrace_for(square, 40) == 40 and splitter_train.retrace_for(wave, 0) == 0
+
+
+def test_a_splitter_stage_can_bundle_a_shorter_retrace_than_it_learned(tmp_path, monkeypatch):
+    """``bundle_retrace``: the splitter learned with ``retrace`` keeps this one in its
+    bundle, what jdraw.plan joins with unless asked (plan_image asks for more)."""
+    import ml_collections
+
+    rng = np.random.default_rng(0)
+    xs = rng.normal(size=(64, splits.CORNER_FEATURES)).astype(np.float32)
+    xj = rng.normal(size=(64, splits.JOIN_FEATURES)).astype(np.float32)
+    data = (xs, (xs[:, 0] > 0).astype(np.float32), xj, (xj[:, 1] > 0).astype(np.float32))
+    monkeypatch.setattr(splitter_train, "make_examples", lambda cfg, wd, progress: [])
+    monkeypatch.setattr(splitter_train, "load_examples", lambda paths, context: data)
+    cfg = ml_collections.ConfigDict(
+        dict(
+            out=str(tmp_path / "out"),
+            steps=4,
+            batch=16,
+            learning_rate=3e-3,
+            seed=0,
+            patches=False,
+            hidden=8,
+            reach=16,
+            retrace=40,
+        )
+    )
+    splitter_train.train(cfg, tmp_path / "stage", progress=False)
+    assert splits.load(tmp_path / "out").retrace == 40
+    cfg.bundle_retrace = 0
+    splitter_train.train(cfg, tmp_path / "stage2", progress=False)
+    assert splits.load(tmp_path / "out").retrace == 0

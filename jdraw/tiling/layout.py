@@ -122,8 +122,15 @@ def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
         on = line_of == k
         y0, y1 = int(y[on].min()), int((y + h)[on].max())
         rows = np.isin(labels[y0:y1], np.flatnonzero(on) + 1)
-        crossings = np.count_nonzero(rows[:, 1:] & ~rows[:, :-1], axis=1) + rows[:, 0]
-        core = np.count_nonzero(crossings >= 0.5 * crossings.max())
+        # A line starts where a row has ink and the 3 pixels before it none: separate
+        # lines are further apart than that (min_gap). The busiest rows are the top
+        # tenth, as the steps of a near-flat line make a row or two look busier.
+        before = np.zeros_like(rows)
+        for d in range(1, 4):
+            before[:, d:] |= rows[:, :-d]
+        crossings = np.count_nonzero(rows & ~before, axis=1)
+        busy = np.percentile(crossings[crossings > 0], 90)
+        core = np.count_nonzero(crossings >= 0.5 * busy)
         out[on] = w[on] >= JOINED_WIDTH * max(core, 1)
     return out
 
@@ -216,7 +223,7 @@ def layout(
     if single:
         tf = fit_transform(ink_bbox(prep.polylines))
         canvas = render_polylines(prep.polylines, tf, (CANVAS, CANVAS))
-        joined = _mostly_joined(prep.skeleton)
+        joined = mostly_joined(prep.skeleton)
         return scale, [Tile(0, tf, canvas, joined)], [ink_bbox(prep.polylines)]
     h, w = prep.shape
     whole = CanvasTransform(scale)
@@ -253,7 +260,7 @@ def layout(
     return scale, tiles, regions
 
 
-def _mostly_joined(lines: np.ndarray) -> bool:
+def mostly_joined(lines: np.ndarray) -> bool:
     """Whether most centreline pixels of ``lines`` are joined-up writing (:func:`joined_pieces`)."""
     n, labels, stats, _ = cv2.connectedComponentsWithStats(
         np.asarray(lines, np.uint8), connectivity=8

@@ -181,18 +181,41 @@ def fit_members(data, cfg, join_draw=None):
     return seed_members(cfg, fit_one, splits.ensemble)
 
 
+def retrace_for(target: np.ndarray, retrace: int, where: str = "everywhere") -> int:
+    """How far back over a stroke's own line a drawing's join examples reach.
+
+    ``retrace`` everywhere, or with ``where="joined"`` only in a drawing that
+    ``plan_image`` would plan as joined-up writing
+    (:func:`jdraw.tiling.layout.mostly_joined` of its 1-pixel lines ``target``), 0
+    elsewhere.
+    """
+    from jdraw.tiling.layout import mostly_joined
+
+    if not retrace or where == "everywhere":
+        return int(retrace)
+    return int(retrace) if mostly_joined(target) else 0
+
+
 def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     """Examples in chunks of ``cfg.chunk`` traced characters, one npz each, whole or not at all.
 
     KanjiVG's training characters, and ``cfg.get("extra")``'s other sets
-    (:mod:`jdraw.data.mix`), each planned by the tracer without a splitter.
+    (:mod:`jdraw.data.mix`), each planned by the tracer without a splitter. End pairs
+    up to ``cfg.retrace`` apart back over a stroke's own line are candidates in every
+    drawing, or with ``cfg.retrace_where = "joined"`` only in drawings that
+    ``plan_image`` would plan as joined-up writing
+    (:func:`jdraw.tiling.layout.mostly_joined`), as it asks for them there only.
     """
     reach = int(cfg.get("reach", joins.REACH))
     retrace = int(cfg.get("retrace", 0))
+    where = cfg.get("retrace_where", "everywhere")
+    if where not in ("everywhere", "joined"):
+        raise ValueError(f"retrace_where must be 'everywhere' or 'joined', got {where!r}")
 
     def label(demos, drawn):
         return [
-            examples(s, d.strokes, d.target, d.drawn, reach, retrace) for d, s in zip(demos, drawn)
+            examples(s, d.strokes, d.target, d.drawn, reach, retrace_for(d.target, retrace, where))
+            for d, s in zip(demos, drawn)
         ]
 
     return made_chunks(cfg, workdir, label, progress=progress)
@@ -247,6 +270,8 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         "fit_s": t2 - t1,
         "logs": logs,
     }
+    if "bundle_retrace" in cfg:  # what jdraw.plan asks of it unless told (plan_image: more)
+        model.retrace = int(cfg.bundle_retrace)
     out = splits.save(model, cfg.out, provenance={"config": json.loads(cfg.to_json()), **result})
     splits.save(model, workdir / "splitter")
     (workdir / "result.json").write_text(json.dumps(result, indent=2) + "\n")

@@ -154,6 +154,23 @@ def load_splitter(checkpoint=None):
     return _splitter_in(path) if path is not None else None
 
 
+def splitter_for(checkpoint=None, split: bool | str | os.PathLike | None = None):
+    """The splitter :func:`plan` runs with ``split=`` (``None`` if none); bad asks raise.
+
+    A folder: the splitter stored there; ``False``: none; ``None`` or ``True``: the
+    checkpoint's own (``True`` raises if it has none).
+    """
+    if isinstance(split, (str, os.PathLike)):
+        sp = _splitter_in(split)
+        if sp is None:
+            raise ValueError(f"split={str(split)!r}: no splitter.json there")
+        return sp
+    sp = load_splitter(checkpoint) if split is not False else None
+    if split is True and sp is None:
+        raise ValueError("split=True needs a checkpoint with a stroke splitter; this one has none")
+    return sp
+
+
 def _splitter_in(folder) -> object | None:
     meta = pathlib.Path(folder) / "splitter.json"
     mtime = meta.stat().st_mtime if meta.exists() else 0.0
@@ -319,14 +336,7 @@ def plan(
     global_batch = validate.positive_int("global_batch", global_batch)
     retrace = validate.positive_int("retrace", retrace, optional=True, zero=True)
     model = load_model(validate.checkpoint(checkpoint))
-    if isinstance(split, (str, os.PathLike)):
-        sp = _splitter_in(split)
-        if sp is None:
-            raise ValueError(f"split={str(split)!r}: no splitter.json there")
-    else:
-        sp = load_splitter(checkpoint) if split is not False else None
-    if split is True and sp is None:
-        raise ValueError("split=True needs a checkpoint with a stroke splitter; this one has none")
+    sp = splitter_for(checkpoint, split)
     if retrace and sp is None:
         raise ValueError("retrace= joins through the stroke splitter; this plan has none")
     labels = np.stack([state.component_labels(t) for t in targets])

@@ -107,7 +107,7 @@ def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
     :data:`JOINED_WIDTH` times as wide as its text line's core is high runs through
     several letters: a cursive word, a joined piece of Arabic, a Devanagari word
     under its headline. The core is the band of rows that cross at least half as
-    many lines as the row that crosses most: a line of letters' x-height band, which
+    many lines as the busiest tenth of rows: a line of letters' x-height band, which
     every letter crosses and only the tall ones rise above, and most of a line of
     kanji. A printed letter, a kanji's part or a dot is narrower; a long flat piece
     (a dash, a kanji's one bar) may count, and being one straight line it has no

@@ -153,12 +153,11 @@ def _settings(
     if not isinstance(retrace, bool):
         raise validate.InputError(f"retrace must be True or False, got {retrace!r}")
     own = planner is None
-    asked = retrace
-    retrace = None
+    joined_retrace = None
     if own:
         planner = default
         checkpoint = validate.checkpoint(checkpoint)
-        retrace = _joined_retrace(checkpoint, split) if asked else None
+        joined_retrace = _joined_retrace(checkpoint, split) if retrace else None
     elif split is not None:
         raise validate.InputError("split= is jdraw.plan's option; give it to your planner")
     return dict(
@@ -172,7 +171,7 @@ def _settings(
         simplify_tol=validate.positive("simplify_tol", simplify_tol, zero=True),
         direction=direction,
         own=own,
-        retrace=retrace,
+        retrace=joined_retrace,
     )
 
 
@@ -183,14 +182,10 @@ def _joined_retrace(checkpoint, split) -> int | None:
     own reach back over a line is shorter, else ``None`` (no splitter, none asked for,
     or one that already goes that far).
     """
-    from jdraw.planner import plan as api
+    from jdraw.planner.plan import splitter_for
     from jdraw.planner.splits import JOINED_RETRACE
 
-    if split is False:
-        return None
-    sp = api._splitter_in(split) if isinstance(split, str | os.PathLike) else None
-    if sp is None:
-        sp = api.load_splitter(checkpoint)
+    sp = splitter_for(checkpoint, split)
     return JOINED_RETRACE if sp is not None and sp.retrace < JOINED_RETRACE else None
 
 

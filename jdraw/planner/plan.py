@@ -155,11 +155,7 @@ def load_splitter(checkpoint=None):
 
 
 def splitter_for(checkpoint=None, split: bool | str | os.PathLike | None = None):
-    """The splitter :func:`plan` runs with ``split=`` (``None`` if none); bad asks raise.
-
-    A folder: the splitter stored there; ``False``: none; ``None`` or ``True``: the
-    checkpoint's own (``True`` raises if it has none).
-    """
+    """The splitter :func:`plan` runs with ``split=`` (a folder's, none, the checkpoint's)."""
     if isinstance(split, (str, os.PathLike)):
         sp = _splitter_in(split)
         if sp is None:
@@ -308,12 +304,10 @@ def plan(
       direction: ``"ltr"`` or ``"rtl"``: the reading direction the ranker
         orders strokes in (``"rtl"``: as for the mirrored image, see
         :func:`jdraw.planner.ranker.reorder`); the strokes traced are the same.
-      retrace: how many moves back over a stroke's own line the splitter's joins
-        may go (``None``: the splitter's own, 0 for the bundled default), as a
-        writer of joined-up script goes back up a stem or a loop; strokes are
-        joined there only where its join net says so. :func:`jdraw.plan_image`
-        asks for :data:`jdraw.planner.splits.JOINED_RETRACE` where the ink is
-        joined-up writing. Needs a splitter.
+      retrace: moves back over a stroke's own line the splitter's joins may go, as a
+        cursive writer goes back up a stem (``None``: the splitter's own, 0 for the
+        default; joined where its join net says). :func:`jdraw.plan_image` asks for
+        :data:`jdraw.planner.splits.JOINED_RETRACE` in joined-up writing.
 
     Returns:
       A :class:`jdraw.Plan` with one entry per image.

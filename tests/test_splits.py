@@ -127,6 +127,29 @@ def test_a_stroke_that_stops_at_a_dead_end_joins_back_along_its_own_line():
     assert not ink[q[:, 1], q[:, 0]].all()
 
 
+def test_near_ends_on_either_side_of_a_cusp_are_linked_round_its_tip():
+    """The two sides of a narrow hump are 2 px apart below its tip, with paper between:
+    a straight link would leave the ink, so they are linked through the ink, round the
+    tip, and the pair is a join candidate (it was none before 2026-12-07)."""
+    left = np.array([(49.0, y) for y in range(80, 40, -1)] + [(50.0, 40.0)])  # up to the tip
+    right = np.array([(50.0, 40.0)] + [(51.0, y) for y in range(41, 81)])  # and down again
+    ink = geometry.render_strokes([left, right])
+    up, down = left[:37], right[4:]  # the tracer lifted at (49, 44) and began at (51, 44)
+    a, b = up[-1], down[0]
+    assert np.abs(a - b).max() <= joins.GAP and not ink[44, 50]  # paper between them
+    link = joins.bridge(a, b, ink)
+    assert link is not None and len(link) == 7  # 8 moves round the tip
+    assert ink[link[:, 1].astype(int), link[:, 0].astype(int)].all()
+    assert link[:, 1].min() == 40
+    assert (0, True, 1, False) in dict(joins.end_links([up, down], ink))
+    (one,) = joins.join_pairs([up, down], [(0, True, 1, False)], ink)
+    q = np.rint(one).astype(int)
+    assert ink[q[:, 1], q[:, 0]].all() and np.abs(np.diff(one, axis=0)).max() <= 1
+    # Without a path through the ink within reach they stay apart.
+    apart = geometry.render_strokes([up, down])
+    assert joins.bridge(a, b, apart) is None and joins.end_links([up, down], apart) == []
+
+
 def test_long_links_go_back_over_their_own_line_only(tmp_path):
     """Beyond ``reach``, two ends are linked (up to ``retrace`` moves) only when the
     path through the ink goes back over one of the two strokes' own line."""

@@ -81,7 +81,8 @@ def test_small_drawing_fits_one_canvas():
 def test_stitch_joins_across_tiles_before_inside_a_tile():
     a = np.array([[95, 5], [96, 5], [97, 5], [98, 5], [99, 5]])
     b = np.array([[103, 6], [102, 5], [101, 5], [100, 5]])  # drawn towards the border
-    c = np.array([[99, 6], [98, 7]])  # touches a's end but lies in a's tile
+    # touches a's end but lies in a's tile (longer than a crumb, which would be drawn with a)
+    c = np.array([[99, 6], [98, 7], [97, 8], [96, 9], [95, 10], [94, 11]])
     joined = stitch([(0, a), (1, b), (0, c)])
     assert len(joined) == 2
     np.testing.assert_array_equal(joined[0], np.concatenate([a, b[::-1]]))
@@ -95,6 +96,24 @@ def test_stitch_joins_across_tiles_before_inside_a_tile():
     np.testing.assert_array_equal(joined[0], np.concatenate([b, a[1:][::-1]]))
 
 
+def test_stitch_draws_a_border_crumb_as_part_of_the_stroke_it_touches():
+    # A line crosses a tile border; the second tile also drew a pixel of its own
+    # beside the line's first pixel there, which no join can take.
+    a = line_px([90, 5], [99, 5])
+    b = line_px([100, 5], [110, 5])
+    crumb = np.array([[100, 6]])
+    report = {}
+    joined = stitch([(0, a), (1, b), (1, crumb)], report)
+    assert len(joined) == 1 and report["crumbs"] == 1 and report["joins"] == 1
+    drawn = {tuple(q) for q in joined[0].tolist()}
+    assert drawn == {tuple(q) for q in np.concatenate([a, b, crumb]).tolist()}
+    assert np.all(np.abs(np.diff(joined[0], axis=0)) <= 1)  # still one motion
+    # Without crumbs (the tiler's join_lifts=False knobs), it stays a pen lift.
+    assert len(stitch([(0, a), (1, b), (1, crumb)], fragment=0)) == 2
+    # A dot apart from every line is a stroke of its own.
+    assert len(stitch([(0, a), (1, b), (1, np.array([[104, 9]]))])) == 2
+
+
 def line_px(*corners):
     return geometry.polyline_pixels(np.array(corners))
 
@@ -104,7 +123,8 @@ def test_stitch_removes_pen_lifts_only_where_a_line_continues():
     left, right = line_px([10, 10], [2, 13]), line_px([10, 10], [18, 13])
     report = {}
     joined = stitch([(0, left), (0, right)], report)
-    assert len(joined) == 1 and report == {"joins": 0, "breaks": 0, "lift_joins": 1, "fragments": 0}
+    assert len(joined) == 1
+    assert report == {"joins": 0, "breaks": 0, "lift_joins": 1, "fragments": 0, "crumbs": 0}
     np.testing.assert_array_equal(joined[0], np.concatenate([right[::-1], left[1:]]))
     assert len(stitch([(0, left), (0, right)], smooth_cos=-2.0, fragment=0)) == 2
     # A corner is a pen lift a writer makes on purpose: kept.

@@ -203,12 +203,17 @@ def bridge(a, b, ink=None, gap: int = GAP, reach: int = REACH) -> np.ndarray | N
     Ends at most ``gap`` pixels apart (Chebyshev) are linked straight, if the pixels
     between are ink (any, without ``ink``); ends up to ``reach`` apart by the shortest
     path through ``ink`` of at most ``reach`` moves, often over a line drawn already.
+    So are near ends whose straight link would leave the ink: the two sides of a
+    narrow cusp (the top of a cursive m's hump, an r's spike), where the tracer
+    lifts at the turn and starts again beside it, are linked round the tip
+    (until 2026-12-07 such a pair was never a candidate).
     """
     a, b = np.asarray(a, np.float64), np.asarray(b, np.float64)
     far = np.abs(a - b).max()
     if far <= gap:
         link = _link(a, b)
-        return link if _on_ink(np.concatenate([a[None], link, b[None]]), ink) else None
+        if _on_ink(np.concatenate([a[None], link, b[None]]), ink):
+            return link
     if ink is None or far > reach:
         return None
     return between(ink_tree(np.asarray(ink, bool), a, reach), a, b)

@@ -8,6 +8,7 @@ import numpy as np
 from scipy.cluster.hierarchy import DisjointSet
 
 from jdraw import geometry
+from jdraw.planner.joins import absorb_crumbs
 
 
 def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
@@ -115,14 +116,16 @@ def stitch(
       report: when given, receives counts (added to what it holds):
         ``joins`` (links across tile borders), ``breaks`` (ends that had an
         8-neighbour across a border but stayed unjoined), ``lift_joins`` (pen
-        lifts of one tile removed) and ``fragments`` (pieces dropped because
-        other strokes draw all their pixels).
+        lifts of one tile removed), ``fragments`` (pieces dropped because
+        other strokes draw all their pixels) and ``crumbs`` (strokes of at most
+        ``fragment`` pixels drawn as part of a stroke they touch).
       smooth_cos: two strokes of one tile are joined only where they continue
         each other: the cosine between their outward directions is at most this.
       reach: ends at most this many pixels apart (Chebyshev) may be joined;
         2 is the planner's longest move, and the gap is drawn as a straight step.
       fragment: a piece that adds at most this many pixels to what the others
-        draw is a fragment; so is any piece this short.
+        draw is a fragment; so is any piece this short. A joined stroke this
+        short that touches another is a crumb (0: none are).
 
     Returns:
       The joined strokes as 8-connected pixel paths, ordered by their earliest
@@ -143,7 +146,12 @@ def stitch(
     to the turn. Fragments (the planner retracing a stroke's end to reach a
     pixel or two beyond it) are then trimmed to the pixels nothing else draws.
     Border joins are made first, then the closest, then the straightest
-    continuations; every end is joined at most once.
+    continuations; every end is joined at most once. Last, a crumb left over
+    (most often a pixel or two a tile drew on its border beside a stroke that
+    crosses it, which no join can take, its end being joined already) is drawn
+    as part of the stroke it touches, as the planner's own join stage draws the
+    crumbs of a tile (:func:`jdraw.planner.joins.absorb_crumbs`), not as a pen
+    lift of its own.
     """
     paths: list[np.ndarray | None] = [_trim_retrace(geometry.polyline_pixels(p)) for _, p in pieces]
     tile_of = [t for t, _ in pieces]
@@ -239,4 +247,9 @@ def stitch(
         if 2 * against > sum(len(p) for p in parts):
             joined = joined[::-1]
         out.append(joined)
+    if fragment:
+        n = len(out)
+        out = [np.asarray(p, np.int64) for p in absorb_crumbs(out, crumb=fragment)]
+        if report is not None:
+            report["crumbs"] = report.get("crumbs", 0) + n - len(out)
     return out

@@ -49,6 +49,8 @@ class ImagePlan:
         continue each other (``join_lifts``).
       fragments: planned pieces dropped because other strokes draw all their pixels.
       direction: ``"ltr"`` or ``"rtl"``, the reading direction planned in.
+      crumbs: strokes of a few pixels left by the stitching (most often a tile's
+        pixel or two on its border) drawn as part of the stroke they touch.
     """
 
     strokes: list[np.ndarray]
@@ -64,6 +66,7 @@ class ImagePlan:
     lift_joins: int = 0
     fragments: int = 0
     direction: str = "ltr"
+    crumbs: int = 0
 
     def pen_down_length(self) -> float:
         """Total length drawn, input pixels."""
@@ -351,4 +354,5 @@ def _finish(job: _Job, simplify_tol: float, join_lifts: bool) -> ImagePlan:
         report.get("lift_joins", 0),
         report.get("fragments", 0),
         job.direction,
+        report.get("crumbs", 0),
     )

@@ -351,3 +351,37 @@ def test_joined_up_writing_is_planned_with_joins_back_over_its_line(monkeypatch,
         calls.clear()
         assert cli.main(["draw", str(path), "--no-progress", *flags]) == 0
         assert {r for r, _ in calls} == want
+
+
+def test_tile_borders_run_through_the_least_ink_the_grid_allows():
+    """A region 150 px wide takes two canvases, with 50 px to spare. Centred, their
+    border would cut the ink at x = 85; it goes through the gap at 70-80 instead."""
+    profile = np.full(300, 3)
+    profile[:10] = profile[160:] = 0  # the region spans x = 10..159
+    profile[70:81] = 0  # a gap between two letters
+    g = layout._grid_start(profile, 10, 150, 2)
+    assert g == -22  # its border at 78: no ink within 3 px of it
+    assert g <= 10 and g + 2 * geometry.CANVAS >= 160  # the grid still covers the region
+    assert layout._grid_start(np.full(300, 3), 10, 150, 2) == -15  # no gap: centred
+    assert layout._grid_start(profile, 10, 60, 1) == -10  # one canvas: centred
+
+
+def test_layout_places_each_regions_grid_by_its_ink(monkeypatch):
+    """layout() asks _grid_start where each region's grid begins, with the region's
+    own centreline pixels per column and row, and puts its tiles there."""
+    img = np.full((200, 1500), 255, np.uint8)
+    cv2.polylines(img, [np.array([[20, 100], [400, 40], [800, 160], [1480, 60]])], False, 0, 3)
+    calls, real = [], layout._grid_start
+
+    def spy(profile, start, size, n):
+        g = real(profile, start, size, n)
+        calls.append((int(np.sum(profile)), start, size, n, g))
+        return g
+
+    monkeypatch.setattr(layout, "_grid_start", spy)
+    scale, tiles, _ = layout.layout(prepare(img))
+    (sx, x, bw, nx, gx), (sy, y, bh, ny, gy) = calls  # one region: along x, then along y
+    assert nx >= 2 and sx == sy > 0  # the same ink, counted by column and by row
+    lefts = sorted({round(-t.transform.offset[0]) for t in tiles})
+    assert lefts[0] == gx and all(b - a == geometry.CANVAS for a, b in zip(lefts, lefts[1:]))
+    assert {round(-t.transform.offset[1]) for t in tiles} == {gy}

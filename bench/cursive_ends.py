@@ -16,8 +16,8 @@ Plans the first ``--n`` words of a split of :mod:`jdraw.data.cursive` as
 It also counts the ends that are not the writer's and lie within 2.5 canvas px of a
 tile border, and the planned strokes shorter than a tenth of the word's height (and
 the writer's: the dots). ``--png`` draws the words with the largest excess of strokes,
-tile borders in cyan, each stroke in its order colour (a circle at its start, a cross
-at its end). This is how the tile-border and cusp faults of 2026-12-07 were found
+tile borders in cyan, each stroke in its order colour (blue first, red last, a dot at
+its start). This is how the tile-border and cusp faults of 2026-12-07 were found
 (docs/scripts.md). About 20 s for 40 words on the 2-core CPU.
 """
 
@@ -37,7 +37,6 @@ ON_LINE = 4.0  # input px: an end this near a stroke's points lies on that strok
 ALONG = 6.0  # input px from a stroke's own end that still counts as that end
 BORDER = 2.5  # canvas px: an end this near a tile border is at the border
 SHORT = 0.1  # of the word's height: a stroke shorter than this is short
-COLOURS = [(75, 25, 230), (75, 180, 60), (200, 130, 0), (48, 130, 245), (180, 30, 145)]
 
 
 def _arclength(p: np.ndarray) -> np.ndarray:
@@ -121,33 +120,29 @@ def measure(split: str, n: int, checkpoint=None) -> dict:
 
 
 def picture(per_word, path: str, n: int = 4) -> None:
-    """The ``n`` words with the most strokes over the writer's, drawn one under another."""
+    """The ``n`` words with the most strokes over the writer's, drawn one under another:
+    :func:`jdraw.io.pictures.draw_strokes_png` (order colours, a dot at each start), tile
+    borders in cyan."""
     import cv2
+
+    from jdraw.io.figures import save_png
+    from jdraw.io.pictures import draw_strokes_png
 
     rows = []
     for _, word, img, written, strokes, plan in sorted(per_word, key=lambda r: -r[0])[:n]:
-        c = cv2.cvtColor((img // 2 + 127).astype(np.uint8), cv2.COLOR_GRAY2BGR)
+        c = np.ascontiguousarray(draw_strokes_png(img, strokes, scale=1.0, line_width=2))
         xs, ys = border_lines(plan)
         for x in xs:
-            cv2.line(c, (round(x), 0), (round(x), c.shape[0] - 1), (200, 200, 0), 1)
+            cv2.line(c, (round(x), 0), (round(x), c.shape[0] - 1), (0, 200, 200), 1)
         for y in ys:
-            cv2.line(c, (0, round(y)), (c.shape[1] - 1, round(y)), (200, 200, 0), 1)
-        for i, s in enumerate(strokes):
-            col, q = COLOURS[i % len(COLOURS)], np.round(s).astype(np.int32)
-            cv2.polylines(c, [q], False, col, 2)
-            cv2.circle(c, tuple(int(v) for v in q[0]), 5, col, 2)
-            cv2.drawMarker(c, tuple(int(v) for v in q[-1]), col, cv2.MARKER_TILTED_CROSS, 10, 2)
+            cv2.line(c, (0, round(y)), (c.shape[1] - 1, round(y)), (0, 200, 200), 1)
         label = f"{word}: written {len(written)}, planned {len(strokes)}"
         cv2.putText(c, label, (5, 15), cv2.FONT_HERSHEY_SIMPLEX, 0.5, (0, 0, 0), 1)
         rows.append(c)
-    if not rows:
-        return
-    width = max(r.shape[1] for r in rows)
-    rows = [
-        cv2.copyMakeBorder(r, 0, 4, 0, width - r.shape[1], cv2.BORDER_CONSTANT, value=(255,) * 3)
-        for r in rows
-    ]
-    cv2.imwrite(path, np.vstack(rows))
+    if rows:
+        width = max(r.shape[1] for r in rows)
+        pad = [((0, 4), (0, width - r.shape[1]), (0, 0)) for r in rows]
+        save_png(path, np.vstack([np.pad(r, w, constant_values=255) for r, w in zip(rows, pad)]))
 
 
 def main(argv=None) -> None:

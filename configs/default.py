@@ -434,6 +434,33 @@ def joined_retrace(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     return c
 
 
+def joined_t_cuts(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """``joined_retrace``'s splitter, its join net also taught to draw a T's branch on the way.
+
+    In drawings that count as joined-up writing, strokes are cut where another
+    stroke's end meets their line (``jdraw.planner.corners.t_cuts``) before the end
+    pairs are labelled; the two parts of a cut are one line only where a reference
+    stroke runs straight from one into the other (``jdraw.train.splitter.through``).
+    The bundle's splitter cuts so where ``plan_image`` asks for joins back over the
+    line. Three seeds as one (``members``). The local and start stages are the
+    default's, copied in as ``own_retrace`` says:
+
+      mkdir -p runs/tcut2/local runs/tcut2/start
+      cp -r jdraw/checkpoints/default runs/tcut2/local/bundle
+      cp -r jdraw/checkpoints/default runs/tcut2/start/bundle
+      python train.py --config configs/default.py:joined_t_cuts --workdir runs/tcut2
+
+    Not the default (2026-12-07): fewer strokes on cursive words, but Arabic words
+    start in their rightmost letter less often. Results: docs/scripts.md ("A T's
+    branch drawn on the way").
+    """
+    c = joined_retrace(c)
+    c.name = "default_joined_t_cuts"
+    c.stages.splitter.t_cuts = True
+    c.stages.splitter.members = 3
+    return c
+
+
 def scribble_splitter(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     """The default with its splitter also traced on 3,000 scribbles (jdraw.data.scribbles).
 
@@ -508,6 +535,8 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         return own_retrace(c)
     if variant == "joined_retrace":
         return joined_retrace(c)
+    if variant == "joined_t_cuts":
+        return joined_t_cuts(c)
     if variant == "scribble_splitter":
         return scribble_splitter(c)
     if variant == "splitter_members":
@@ -516,7 +545,7 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         raise ValueError(
             "configs/default.py: unknown variant "
             f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_start, "
-            "retrace, context, context_tiny, own_retrace, scribble_splitter, splitter_members, "
-            "ranker_only or none)"
+            "retrace, context, context_tiny, own_retrace, joined_retrace, joined_t_cuts, "
+            "scribble_splitter, splitter_members, ranker_only or none)"
         )
     return c

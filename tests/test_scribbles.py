@@ -191,6 +191,18 @@ def test_joined_retrace_variant_is_own_retrace_learned_and_asked_in_joined_writi
     assert sp == own["stages"]["splitter"]
 
 
+def test_joined_t_cuts_variant_is_joined_retrace_with_t_cuts_and_three_seeds():
+    from configs import default
+
+    joined = default.get_config("joined_retrace").to_dict()
+    c = default.get_config("joined_t_cuts").to_dict()
+    for name in ("local", "start", "ranker"):
+        assert c["stages"][name] == joined["stages"][name]
+    sp = c["stages"]["splitter"]
+    assert sp.pop("t_cuts") is True and sp.pop("members") == 3
+    assert sp == joined["stages"]["splitter"]
+
+
 def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():
     from configs import default
 

@@ -474,3 +474,77 @@ def test_a_splitter_stage_can_bundle_a_shorter_retrace_than_it_learned(tmp_path,
     cfg.bundle_retrace = 0
     splitter_train.train(cfg, tmp_path / "stage2", progress=False)
     assert splits.load(tmp_path / "out").retrace == 0
+
+
+def test_t_cuts_cut_a_line_where_another_strokes_end_meets_it():
+    """A bar with a stem hanging from its middle: the bar is cut there in two, the parts
+    sharing the point; an end near the bar's own end, or off its line, cuts nothing."""
+    bar, stem = _line(20, 50, 80, 50), _line(50, 51, 50, 80)
+    parts = corner_geometry.t_cuts([bar, stem])
+    assert len(parts) == 3
+    np.testing.assert_array_equal(parts[0][-1], [50, 50])
+    np.testing.assert_array_equal(parts[1][0], [50, 50])
+    np.testing.assert_array_equal(parts[2], stem)
+    assert geometry.render_strokes(parts).tolist() == geometry.render_strokes([bar, stem]).tolist()
+    assert len(corner_geometry.t_cuts([bar, _line(22, 51, 22, 80)])) == 2  # at the bar's end
+    assert len(corner_geometry.t_cuts([bar, _line(50, 54, 50, 80)])) == 2  # 4 px off its line
+
+
+def test_a_splitter_that_learned_t_cuts_draws_a_branch_on_the_way_through(monkeypatch):
+    """Where joins may go back over the line (plan_image's joined-up writing), a splitter
+    whose join net learned T's cuts a stroke where another's end meets it, so a stem can
+    be drawn on the way along the bar: along to the stem, down it and back up, on along
+    the bar. A cut no join takes is joined again. A splitter that did not learn T's, or
+    joins that may not go back over the line, cut nothing."""
+    bar, stem = _line(5, 50, 95, 50), _line(50, 51, 50, 70)  # each bar end 45 px off
+    ink = geometry.render_strokes([bar, stem])
+    seen = []
+    real = splits.all_pairs
+    monkeypatch.setattr(splits, "all_pairs", lambda *a, **k: seen.append(real(*a, **k)) or seen[-1])
+    # A join net that joins the bar's parts to the stem (stroke 2 once the bar is cut) only.
+    score = lambda fn, sp, x: np.array([9.0 if 2 in (i, j) else -9.0 for i, _, j, _ in seen[-1][0]])
+    monkeypatch.setattr(splits, "_score", score)
+    sp = _splitter(0.0, 0.0)
+    assert len(splits.join_many(sp, [[bar, stem]], [ink], retrace=40)[0]) == 2
+    sp.t_cuts = True
+    (one,) = splits.join_many(sp, [[bar, stem]], [ink], retrace=40)
+    assert len(one) == 1 and geometry.render_strokes(one).tolist() == ink.tolist()
+    assert np.abs(np.diff(one[0], axis=0)).max() <= 2  # no jump: back up the stem's own line
+    assert len(splits.join_many(sp, [[bar, stem]], [ink], retrace=0)[0]) == 2
+    monkeypatch.setattr(splits, "_score", lambda fn, sp, x: np.full(len(x), -9.0))
+    (kept,) = splits.join_many(sp, [[bar, stem]], [ink], retrace=40)
+    assert len(kept) == 2
+    moved = np.r_[True, np.abs(np.diff(kept[0], axis=0)).max(1) > 0]  # the cut point once
+    np.testing.assert_array_equal(kept[0][moved], bar)  # the cut joined again, as it was
+
+
+def test_t_cuts_survive_a_bundle_and_an_ensemble(tmp_path):
+    sp = _splitter(0.0, 0.0)
+    sp.t_cuts = True
+    splits.save(splits.ensemble([sp, sp]), tmp_path)
+    assert splits.load(tmp_path).t_cuts
+    splits.save(_splitter(0.0, 0.0), tmp_path)
+    assert not splits.load(tmp_path).t_cuts
+
+
+def test_a_t_cut_is_labelled_by_whether_the_writer_ran_straight_through_it():
+    """The two parts of a bar cut at a T are one line to join again only where a reference
+    stroke runs from one straight into the other; a writer who drew the stem on the way
+    (along, down the stem and back, on) came to the T twice and never went straight on."""
+    left, right, stem = _line(10, 50, 40, 50), _line(40, 50, 70, 50), _line(40, 50, 40, 20)
+    assert splitter_train.through(left, right, [_line(10, 50, 70, 50), stem])
+    assert splitter_train.through(left, right, [_line(70, 50, 10, 50)])  # either way
+    detour = np.concatenate([left, stem[1:], stem[::-1][1:], right[1:]])
+    assert not splitter_train.through(left, right, [detour])
+    assert not splitter_train.through(left, right, [left, right])  # two strokes meeting there
+    bar, traced_stem = _line(10, 50, 70, 50), _line(40, 49, 40, 20)
+    ink = geometry.render_strokes([bar, traced_stem])
+    cut = corner_geometry.t_cuts([bar, traced_stem])
+    seam = splits.all_pairs(cut, ink, retrace=40)[0].index((0, True, 1, False))
+    for refs, rejoin in (([detour], 0.0), ([_line(10, 50, 70, 50), stem], 1.0)):
+        _, _, _, yj, _, _ = splitter_train.examples(
+            [bar, traced_stem], refs, ink, retrace=40, t_cuts=True
+        )
+        plain = splitter_train.examples([bar, traced_stem], refs, ink, retrace=40)[3]
+        assert len(yj) > len(plain)  # the cut's pairs are examples too
+        assert yj[seam] == rejoin  # the bar's two parts

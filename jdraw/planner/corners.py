@@ -151,3 +151,42 @@ def split_at(points, ks) -> list[np.ndarray]:
     p = np.asarray(points, np.float64).reshape(-1, 2)
     cuts = [0, *sorted(int(k) for k in ks), len(p) - 1]
     return [p[a : b + 1] for a, b in zip(cuts[:-1], cuts[1:]) if b > a]
+
+
+T_TOUCH = 2.5  # pixels: a stroke end this near another stroke's line meets it there
+T_AWAY = 4.0  # pixels along the line from that stroke's ends, at least (nearer: an end pair)
+
+
+def t_cuts(strokes, with_seams: bool = False):
+    """Strokes cut where another stroke's end meets their line (a T), the parts sharing the point.
+
+    The tracer may run on through a junction and draw the branch later, from
+    the junction: the e of a cursive word, whose loop a writer draws on the way
+    through and goes back over. Cut there, the junction has three stroke ends,
+    and the join stage can draw the branch on the way through (two end pairs,
+    one of them back over the branch's line) or join the two parts again.
+    An end meets a line within :data:`T_TOUCH` pixels of it and at least
+    :data:`T_AWAY` along it from its ends. ``with_seams``: also the end pairs
+    ``(i, True, i + 1, False)`` of the parts cut apart, so a cut no join uses can be
+    joined again.
+    """
+    S = [np.asarray(s, np.float64).reshape(-1, 2) for s in strokes]
+    cuts: dict[int, set[int]] = {}
+    for b, p in enumerate(S):
+        if len(p) < 2:
+            continue
+        for q in (p[0], p[-1]):
+            for a, r in enumerate(S):
+                if a == b or len(r) < 3:
+                    continue
+                d = np.hypot(*(r - q).T)
+                k = int(d.argmin())
+                s = _arclength(r)
+                if d[k] <= T_TOUCH and T_AWAY <= s[k] <= s[-1] - T_AWAY:
+                    cuts.setdefault(a, set()).add(k)
+    out, seams = [], []
+    for a, p in enumerate(S):
+        parts = split_at(p, sorted(cuts[a])) if a in cuts else [p]
+        seams += [(len(out) + k, True, len(out) + k + 1, False) for k in range(len(parts) - 1)]
+        out += parts
+    return (out, seams) if with_seams else out

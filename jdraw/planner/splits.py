@@ -34,7 +34,14 @@ import jax
 import numpy as np
 from flax import nnx
 
-from jdraw.planner.corners import GEOMETRY_FEATURES, _box, corner_features, corners, split_at
+from jdraw.planner.corners import (
+    GEOMETRY_FEATURES,
+    _box,
+    corner_features,
+    corners,
+    split_at,
+    t_cuts,
+)
 from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_links, join_features, join_pairs
 from jdraw.planner.ranker import MLP, chunked, stack_mlps, with_context
 from jdraw.planner.stroke_tokens import CONTEXT_FEATURES, context, stroke_masks, tokens
@@ -91,6 +98,7 @@ class Splitter(nnx.Module):
         self.reach = reach
         self.retrace = int(retrace)  # further, back over one of the two strokes' own line
         self.context = bool(context)
+        self.t_cuts = False  # whether its join net learned t_cuts' ends (where it retraces)
         c = CONTEXT_FEATURES if context else 0
         self.split_net = MLP((CORNER_FEATURES if patches else GEOMETRY_FEATURES) + c, hidden, rngs)
         self.join_net = MLP(join_width(patches, reach) + c, hidden, rngs)
@@ -114,6 +122,7 @@ def ensemble(splitters) -> Splitter:
         first.hidden * len(splitters), first.patches, first.reach, context=first.context,
         retrace=first.retrace, rngs=nnx.Rngs(0),
     )  # fmt: skip
+    out.t_cuts = first.t_cuts
     for name in ("split_net", "join_net"):
         stack_mlps(getattr(out, name), [getattr(s, name) for s in splitters], first.hidden)
     return out
@@ -245,11 +254,18 @@ def join_many(
 
     ``inks``: the ink planned (joins stay on it); ``drawn``: the ink as drawn;
     ``retrace``: how far back over a stroke's own line a join may go (``None``: the
-    splitter's own).
+    splitter's own); where it is not 0 and the splitter learned it (``t_cuts``), strokes
+    are first cut where another's end meets their line
+    (:func:`jdraw.planner.corners.t_cuts`), and a cut whose two ends no chosen join
+    takes is joined again.
     """
     inks = [None] * len(characters) if inks is None else inks
     drawn = [None] * len(characters) if drawn is None else drawn
     retrace = splitter.retrace if retrace is None else int(retrace)
+    seams = [[] for _ in characters]
+    if retrace and splitter.t_cuts:  # a branch may be drawn on the way through
+        cut = [t_cuts(s, with_seams=True) for s in characters]
+        characters, seams = [c for c, _ in cut], [m for _, m in cut]
     found = [
         all_pairs(s, ink, d, splitter.patches, splitter.reach, retrace)
         for s, ink, d in zip(characters, inks, drawn)
@@ -259,10 +275,11 @@ def join_many(
     x = np.concatenate(rows) if rows else np.zeros((0, 1))
     logit = _score(_join_logits, splitter, x)
     out, at = [], 0
-    for strokes, ink, (pairs, _) in zip(characters, inks, found):
+    for strokes, ink, (pairs, _), seam in zip(characters, inks, found, seams):
         z = logit[at : at + len(pairs)]
         at += len(pairs)
         chosen = [pairs[k] for k in np.argsort(-z) if z[k] > threshold]
+        chosen += seam  # a T's cut that no join took is joined again, last
         reach = max(splitter.reach, retrace)
         out.append(join_pairs(strokes, chosen, ink, reach) if chosen else list(strokes))
     return out
@@ -332,6 +349,7 @@ def save(splitter: Splitter, out_dir, provenance: dict | None = None) -> pathlib
         "reach": splitter.reach,
         "context": splitter.context,
         "retrace": splitter.retrace,
+        "t_cuts": splitter.t_cuts,
         "corner_features": CORNER_FEATURES if splitter.patches else GEOMETRY_FEATURES,
         "join_features": join_width(splitter.patches, splitter.reach),
         "provenance": provenance or {},
@@ -355,7 +373,7 @@ def load(bundle_dir) -> Splitter | None:
                 "(configs/default.py, stage splitter)"
             )
         ctx = bool(meta.get("context", False))
-        return Splitter(
+        sp = Splitter(
             int(meta.get("hidden", 64)),
             patches,
             reach,
@@ -363,5 +381,7 @@ def load(bundle_dir) -> Splitter | None:
             retrace=int(meta.get("retrace", 0)),
             rngs=nnx.Rngs(0),
         )
+        sp.t_cuts = bool(meta.get("t_cuts", False))
+        return sp
 
     return bundle.load_net(bundle_dir, "splitter", build)

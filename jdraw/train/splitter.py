@@ -37,7 +37,13 @@ from jdraw.train.ranker import (
 
 
 def examples(
-    traced, refs, ink, drawn=None, reach: int = joins.REACH, retrace: int = 0
+    traced,
+    refs,
+    ink,
+    drawn=None,
+    reach: int = joins.REACH,
+    retrace: int = 0,
+    t_cuts: bool = False,
 ) -> tuple[np.ndarray, ...]:
     """Split and join examples of one character: ``(xs, ys, xj, yj, cs, cj)``.
 
@@ -50,6 +56,9 @@ def examples(
         planned (canonical); drawn: the ink as drawn before it was canonicalised;
         reach: pixels between ends joined through the ink (0: near ends only);
         retrace: further, up to this many, back over one of the two strokes' line.
+        t_cuts: where ``retrace`` is not 0, also cut the strokes where another's end
+          meets their line (:func:`jdraw.planner.corners.t_cuts`), as a splitter that
+          learned them does in ``join_many``.
     """
     strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in traced if len(s)]
     keys, xs = splits.all_corners(strokes, drawn)  # grouped by stroke, in stroke order
@@ -63,9 +72,15 @@ def examples(
         ys.append(lab)
         cut += corners.split_at(p, ks[lab]) if lab.any() else [p]
     ys = np.concatenate(ys) if ys else np.zeros(0)
+    seams = set()
+    if retrace and t_cuts:  # as jdraw.planner.splits.join_many cuts them
+        cut, seam = corners.t_cuts(cut, with_seams=True)
+        seams = set(seam)
     pairs, xj = splits.all_pairs(cut, ink, drawn, reach=reach, retrace=retrace)
     yj = [
-        joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
+        through(cut[i], cut[j], refs)
+        if (i, ie, j, je) in seams
+        else joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
     ]
     ctx = lambda rows, s: splits.drawing_rows(rows[:, :0], s)
@@ -77,6 +92,51 @@ def examples(
         ctx(xs, strokes),
         ctx(xj, cut),
     )
+
+
+NEAR = 2.0  # pixels: a reference stroke this near a line follows it
+ARM = 8.0  # pixels of line each side of a T's cut that the writer must run along
+
+
+def _resampled(p: np.ndarray) -> np.ndarray:
+    """``p`` with a point every half pixel along it."""
+    s = corners._arclength(p)
+    t = np.arange(0.0, s[-1] + 0.5, 0.5) if s[-1] > 0 else np.zeros(1)
+    return np.stack([np.interp(t, s, p[:, 0]), np.interp(t, s, p[:, 1])], 1)
+
+
+def _arm(p: np.ndarray) -> np.ndarray:
+    """The points of ``p`` from 1 to ARM pixels along it from its first point."""
+    s = corners._arclength(p)
+    return p[(s >= 1.0) & (s <= ARM)]
+
+
+def through(first: np.ndarray, second: np.ndarray, refs) -> bool:
+    """Whether a reference stroke runs straight on from ``first``'s end into ``second``
+    (two parts of a line cut apart at a T, sharing the point): the label of joining them
+    again. A cursive writer who draws the branch on the way (an e's loop) comes to the
+    point twice, from the first part into the branch and from the branch into the second,
+    and never from one part straight into the other.
+    """
+    a = _arm(np.asarray(first, np.float64)[::-1])  # back along the first part
+    b = _arm(np.asarray(second, np.float64))
+    if not len(a) or not len(b):
+        return False
+    j = np.asarray(second, np.float64)[0]
+    for r in refs:
+        r = _resampled(np.asarray(r, np.float64).reshape(-1, 2))
+        at = np.flatnonzero(np.hypot(*(r - j).T) <= NEAR + 1.0)
+        runs = np.split(at, np.flatnonzero(np.diff(at) > 1) + 1) if len(at) else []
+        for run in runs:
+            m = int(2 * ARM) + 2  # points every half pixel
+            c = int(run[np.argmin(np.hypot(*(r[run] - j).T))])  # the pass nearest the point
+            before, after = r[max(c - m, 0) : c + 1], r[c : c + m + 1]
+            if len(before) < 2 or len(after) < 2:
+                continue
+            near = lambda q, line: np.hypot(*(q[:, None] - line[None]).T).min(0).max() <= NEAR
+            if (near(a, before) and near(b, after)) or (near(a, after) and near(b, before)):
+                return True
+    return False
 
 
 def fit(
@@ -204,17 +264,19 @@ def make_examples(cfg, workdir, progress: bool = True) -> list[pathlib.Path]:
     up to ``cfg.retrace`` apart back over a stroke's own line are candidates in every
     drawing, or with ``cfg.retrace_where = "joined"`` only in drawings that
     ``plan_image`` would plan as joined-up writing
-    (:func:`jdraw.tiling.layout.mostly_joined`), as it asks for them there only.
+    (:func:`jdraw.tiling.layout.mostly_joined`), as it asks for them there only. With
+    ``cfg.t_cuts``, strokes there are also cut at T's (:func:`examples`).
     """
     reach = int(cfg.get("reach", joins.REACH))
     retrace = int(cfg.get("retrace", 0))
     where = cfg.get("retrace_where", "everywhere")
+    r, cuts = retrace, bool(cfg.get("t_cuts", False))
     if where not in ("everywhere", "joined"):
         raise ValueError(f"retrace_where must be 'everywhere' or 'joined', got {where!r}")
 
     def label(demos, drawn):
         return [
-            examples(s, d.strokes, d.target, d.drawn, reach, retrace_for(d.target, retrace, where))
+            examples(s, d.strokes, d.target, d.drawn, reach, retrace_for(d.target, r, where), cuts)
             for d, s in zip(demos, drawn)
         ]
 
@@ -270,6 +332,7 @@ def train(cfg, workdir, progress: bool = True) -> dict:
         "fit_s": t2 - t1,
         "logs": logs,
     }
+    model.t_cuts = bool(cfg.get("t_cuts", False))  # join_many cuts as the examples were
     if "bundle_retrace" in cfg:  # what jdraw.plan asks of it unless told (plan_image: more)
         model.retrace = int(cfg.bundle_retrace)
     out = splits.save(model, cfg.out, provenance={"config": json.loads(cfg.to_json()), **result})

@@ -461,6 +461,20 @@ def joined_t_cuts(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     return c
 
 
+def joined_t_cuts_patches(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
+    """``joined_t_cuts`` with nets that also see the ink and the strokes around each
+    corner and pair (``patches``): fitted on the same examples (runs/tcut2's, seconds).
+
+    Not the default yet (2026-12-07): the best cursive and held-out Arabic figures of
+    the T-cut splitters, a little less KanjiVG order. Results: docs/scripts.md ("A T's
+    branch drawn on the way").
+    """
+    c = joined_t_cuts(c)
+    c.name = "default_joined_t_cuts_patches"
+    c.stages.splitter.patches = True
+    return c
+
+
 def scribble_splitter(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
     """The default with its splitter also traced on 3,000 scribbles (jdraw.data.scribbles).
 
@@ -537,6 +551,8 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
         return joined_retrace(c)
     if variant == "joined_t_cuts":
         return joined_t_cuts(c)
+    if variant == "joined_t_cuts_patches":
+        return joined_t_cuts_patches(c)
     if variant == "scribble_splitter":
         return scribble_splitter(c)
     if variant == "splitter_members":
@@ -546,6 +562,6 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
             "configs/default.py: unknown variant "
             f"{variant!r} (tiny, mix, mix_tiny, scripts, scripts_tiny, tune, tune_start, "
             "retrace, context, context_tiny, own_retrace, joined_retrace, joined_t_cuts, "
-            "scribble_splitter, splitter_members, ranker_only or none)"
+            "joined_t_cuts_patches, scribble_splitter, splitter_members, ranker_only or none)"
         )
     return c

@@ -201,6 +201,11 @@ def test_joined_t_cuts_variant_is_joined_retrace_with_t_cuts_and_three_seeds():
     sp = c["stages"]["splitter"]
     assert sp.pop("t_cuts") is True and sp.pop("members") == 3
     assert sp == joined["stages"]["splitter"]
+    p = default.get_config("joined_t_cuts_patches").to_dict()["stages"]["splitter"]
+    assert p.pop("patches") is True and not c["stages"]["splitter"]["patches"]
+    assert {k: v for k, v in p.items() if k not in ("t_cuts", "members")} == {
+        k: v for k, v in sp.items() if k != "patches"
+    }
 
 
 def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():

@@ -179,33 +179,29 @@ def test_own_retrace_variant_changes_only_the_splitters_retrace_and_join_shares(
     assert sp.pop("join_shares") == {"latin": 0.1} and sp == before
 
 
+def _splitter_only(base: str, variant: str) -> tuple[dict, dict]:
+    """The splitter stages of two configs/default.py variants, their other stages equal."""
+    from configs import default
+
+    a, b = default.get_config(base).to_dict(), default.get_config(variant).to_dict()
+    for name in ("local", "start", "ranker"):
+        assert b["stages"][name] == a["stages"][name]
+    return b["stages"]["splitter"], a["stages"]["splitter"]
+
+
 def test_joined_retrace_variant_is_own_retrace_learned_and_asked_in_joined_writing_only():
-    from configs import default
-
-    own = default.get_config("own_retrace").to_dict()
-    c = default.get_config("joined_retrace").to_dict()
-    for name in ("local", "start", "ranker"):
-        assert c["stages"][name] == own["stages"][name]
-    sp = c["stages"]["splitter"]
+    sp, own = _splitter_only("own_retrace", "joined_retrace")
     assert sp.pop("retrace_where") == "joined" and sp.pop("bundle_retrace") == 0
-    assert sp == own["stages"]["splitter"]
+    assert sp == own
 
 
-def test_joined_t_cuts_variant_is_joined_retrace_with_t_cuts_and_three_seeds():
-    from configs import default
-
-    joined = default.get_config("joined_retrace").to_dict()
-    c = default.get_config("joined_t_cuts").to_dict()
-    for name in ("local", "start", "ranker"):
-        assert c["stages"][name] == joined["stages"][name]
-    sp = c["stages"]["splitter"]
+def test_joined_t_cuts_variants_are_joined_retrace_with_t_cuts_three_seeds_and_patches():
+    sp, joined = _splitter_only("joined_retrace", "joined_t_cuts")
     assert sp.pop("t_cuts") is True and sp.pop("members") == 3
-    assert sp == joined["stages"]["splitter"]
-    p = default.get_config("joined_t_cuts_patches").to_dict()["stages"]["splitter"]
-    assert p.pop("patches") is True and not c["stages"]["splitter"]["patches"]
-    assert {k: v for k, v in p.items() if k not in ("t_cuts", "members")} == {
-        k: v for k, v in sp.items() if k != "patches"
-    }
+    assert sp == joined
+    sp, cuts = _splitter_only("joined_t_cuts", "joined_t_cuts_patches")
+    assert sp.pop("patches") is True and cuts.pop("patches") is False
+    assert sp == cuts
 
 
 def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():

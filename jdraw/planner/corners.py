@@ -171,6 +171,7 @@ def t_cuts(strokes, with_seams: bool = False):
     joined again.
     """
     S = [np.asarray(s, np.float64).reshape(-1, 2) for s in strokes]
+    along = [_arclength(r) for r in S]
     cuts: dict[int, set[int]] = {}
     for b, p in enumerate(S):
         if len(p) < 2:
@@ -181,7 +182,7 @@ def t_cuts(strokes, with_seams: bool = False):
                     continue
                 d = np.hypot(*(r - q).T)
                 k = int(d.argmin())
-                s = _arclength(r)
+                s = along[a]
                 if d[k] <= T_TOUCH and T_AWAY <= s[k] <= s[-1] - T_AWAY:
                     cuts.setdefault(a, set()).add(k)
     out, seams = [], []

@@ -21,9 +21,12 @@ Writes runs/default/bundle, laid out as jdraw/checkpoints/default, which
 3. ``splitter``: the tracer (stage 2's bundle) plans 9,000 training characters
    drawn the same five ways, 1,500 Latin letters and 2,000 cursive fragments
    (jdraw.data.mix); two small MLPs, each corner and end pair also given the
-   drawing's context, learn where a drawn stroke should be cut and which
-   stroke ends are one stroke, also ends up to 16 px apart linked through the
-   ink, back over a line drawn already (jdraw.train.splitter, jdraw.planner.splits).
+   drawing's context and the pixels around it, learn where a drawn stroke should
+   be cut and which stroke ends are one stroke, also ends up to 16 px apart
+   linked through the ink, and in joined-up writing up to 40 moves back over a
+   stroke's own line, where strokes are first cut at T's so that a branch can be
+   drawn on the way (jdraw.train.splitter, jdraw.planner.splits). Three fitted
+   with seeds 0, 1 and 2, bundled as one (``members``).
 4. ``ranker``: the tracer plans 600 more characters (and 2,500 give KanjiVG's
    own strokes), 2,000 Latin letters, 400 cursive fragments and 1,000 printed
    words of Latin letters (jdraw.data.mix); the ranker (128 wide, each pair and
@@ -41,15 +44,14 @@ These are the configs the bundled default was trained with, flattened (stages
 ``python train.py --config configs/default.py --workdir runs/default16``; the
 bundle's json files keep the configs, and tests/test_pipeline.py compares them
 with these; stage 4 was made again on 2026-12-06, three rankers as one, by the
-``ranker_only`` variant). Result (docs/scripts.md, results/beyond_default_ens3.json):
-KanjiVG test split stroke accuracy 0.9877, order over all pairs 0.9630,
-direction 0.9976; Latin dev glyphs 0.885 / 0.905 / 0.905; 40 cursive val words
-1.94 drawn strokes per written one.
+``ranker_only`` variant, and stage 3 on 2026-12-07 by the ``joined_t_cuts`` and
+``joined_t_cuts_patches`` variants, whose docstrings have the commands).
+Result (docs/scripts.md, results/beyond_default_tcut.json).
 
 Wall time on the 2-core CPU: about 58 min, the sum of the stages' recorded
 times (training loops 2,105 s and 298 s; the bundle's json files), the splitter's
-tracing (10.4 min, two processes sharing its chunks) and the ranker's (4 min 4 s of
-tracing and 49 s for its three fits),
+tracing (about 12 min, two processes sharing its chunks, and 29 s for its three fits)
+and the ranker's (4 min 4 s of tracing and 49 s for its three fits),
 not one fresh run of this command; loading,
 compiling and validation add a few minutes. The tiny variant: 2 min 20 s and
 2 min 39 s in two runs on the CPU shared with other jobs; its bundle plans, badly.
@@ -122,6 +124,25 @@ def start() -> ml_collections.ConfigDict:
 
 
 def splitter() -> ml_collections.ConfigDict:
+    """The bundled splitter stage (2026-12-07): ``joined_t_cuts_patches`` of
+    :func:`splitter_12_05`. In drawings that ``plan_image`` plans as joined-up writing,
+    ends up to 40 moves apart back over a stroke's own line are joined, strokes are
+    first cut where another's end meets their line, and the nets also see the pixels
+    around each corner and pair; three seeds as one."""
+    c = splitter_12_05()
+    c.patches = True  # the nets also see the ink and strokes around each corner and pair
+    c.retrace = 40  # moves back over a stroke's own line an end pair may be linked
+    c.retrace_where = "joined"  # ... learned in joined-up writing only,
+    c.bundle_retrace = 0  # ... asked by plan_image there, never by jdraw.plan
+    c.join_shares = dict(latin=0.1)  # of every batch's end pairs
+    c.t_cuts = True  # a T's branch may be drawn on the way (jdraw.planner.corners.t_cuts)
+    c.members = 3  # fitted with seeds 0, 1, 2 and bundled as one
+    return c
+
+
+def splitter_12_05() -> ml_collections.ConfigDict:
+    """The splitter stage bundled from 2026-12-05 to 2026-12-07, on which every
+    variant below but ``tiny`` and ``ranker_only`` builds."""
     c = ml_collections.ConfigDict()
     c.name = "default/splitter"
     c.stage = "splitter"
@@ -450,9 +471,9 @@ def joined_t_cuts(c: ml_collections.ConfigDict) -> ml_collections.ConfigDict:
       cp -r jdraw/checkpoints/default runs/tcut2/start/bundle
       python train.py --config configs/default.py:joined_t_cuts --workdir runs/tcut2
 
-    Not the default (2026-12-07): fewer strokes on cursive words, but Arabic words
-    start in their rightmost letter less often. Results: docs/scripts.md ("A T's
-    branch drawn on the way").
+    Not the default as it is (2026-12-07): fewer strokes on cursive words, but Arabic
+    words start in their rightmost letter less often; with ``patches`` it is
+    (``joined_t_cuts_patches``). Results: docs/scripts.md ("A T's branch drawn on the way").
     """
     c = joined_retrace(c)
     c.name = "default_joined_t_cuts"
@@ -465,9 +486,10 @@ def joined_t_cuts_patches(c: ml_collections.ConfigDict) -> ml_collections.Config
     """``joined_t_cuts`` with nets that also see the ink and the strokes around each
     corner and pair (``patches``): fitted on the same examples (runs/tcut2's, seconds).
 
-    Not the default yet (2026-12-07): the best cursive and held-out Arabic figures of
-    the T-cut splitters, a little less KanjiVG order. Results: docs/scripts.md ("A T's
-    branch drawn on the way").
+    The bundled default's splitter stage since 2026-12-07 (:func:`splitter`): its
+    splitter.npz and splitter.json were made by the python command in docs/scripts.md
+    ("A T's branch drawn on the way") with this variant, on ``joined_t_cuts``'s traced
+    examples. Results: docs/scripts.md ("The T-cut splitter that sees the patches").
     """
     c = joined_t_cuts(c)
     c.name = "default_joined_t_cuts_patches"
@@ -525,6 +547,8 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     if variant == "tiny":
         c.name = "default_tiny"
         return tiny(c)
+    if variant and variant != "ranker_only":  # measured against the splitter of 2026-12-05
+        c.stages.splitter = splitter_12_05()
     if variant == "mix":
         return mix(c)
     if variant == "mix_tiny":

@@ -150,17 +150,27 @@ def test_tune_start_variant_trains_the_start_model_on_tunes_local_stage():
         assert len(pool) > 0
 
 
+def _measured_base() -> dict:
+    """The default's config with the splitter stage its variants were measured against
+    (configs/default.py:splitter_12_05): the bundled splitter of 2026-12-05."""
+    from configs import default
+
+    c = default.get_config()
+    c.stages.splitter = default.splitter_12_05()
+    return c.to_dict()
+
+
 def test_retrace_variant_changes_only_the_splitters_reach_and_sets():
     from configs import default
 
-    base, c = default.get_config().to_dict(), default.get_config("retrace").to_dict()
+    base, c = _measured_base(), default.get_config("retrace").to_dict()
     for name in ("local", "start"):
         assert c["stages"][name] == base["stages"][name]
     before = default.ranker_before(default.ranker()).to_dict()  # as it was measured
     assert c["stages"]["ranker"] == before and before["hidden"] == 64 and "extra" not in before
     sp = c["stages"]["splitter"]
     assert sp["reach"] == 32 > base["stages"]["splitter"]["reach"]
-    before = default.splitter_before(default.splitter()).to_dict()  # as it was measured
+    before = default.splitter_before(default.splitter_12_05()).to_dict()  # as it was measured
     same = {k: v for k, v in sp.items() if k not in ("reach", "extra")}
     assert same == {k: v for k, v in before.items() if k != "reach"} and not sp["context"]
     for name in sp["extra"]:
@@ -171,7 +181,7 @@ def test_retrace_variant_changes_only_the_splitters_reach_and_sets():
 def test_own_retrace_variant_changes_only_the_splitters_retrace_and_join_shares():
     from configs import default
 
-    base, c = default.get_config().to_dict(), default.get_config("own_retrace").to_dict()
+    base, c = _measured_base(), default.get_config("own_retrace").to_dict()
     for name in ("local", "start", "ranker"):
         assert c["stages"][name] == base["stages"][name]
     sp, before = c["stages"]["splitter"], base["stages"]["splitter"]
@@ -179,7 +189,7 @@ def test_own_retrace_variant_changes_only_the_splitters_retrace_and_join_shares(
     assert sp.pop("join_shares") == {"latin": 0.1} and sp == before
 
 
-def _splitter_only(base: str, variant: str) -> tuple[dict, dict]:
+def _splitter_only(base: str, variant: str | None) -> tuple[dict, dict]:
     """The splitter stages of two configs/default.py variants, their other stages equal."""
     from configs import default
 
@@ -202,12 +212,15 @@ def test_joined_t_cuts_variants_are_joined_retrace_with_t_cuts_three_seeds_and_p
     sp, cuts = _splitter_only("joined_t_cuts", "joined_t_cuts_patches")
     assert sp.pop("patches") is True and cuts.pop("patches") is False
     assert sp == cuts
+    # ... which is the bundled default's splitter stage, the rest of the default unchanged
+    sp, bundled = _splitter_only("joined_t_cuts_patches", None)
+    assert sp == bundled
 
 
 def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():
     from configs import default
 
-    base = default.get_config().to_dict()
+    base = _measured_base()
     c = default.get_config("scribble_splitter").to_dict()
     for name in ("local", "start", "ranker"):
         assert c["stages"][name] == base["stages"][name]
@@ -219,7 +232,7 @@ def test_scribble_splitter_variant_adds_scribbles_to_the_splitters_sets_only():
 def test_splitter_members_variant_fits_five_splitters_and_changes_nothing_else():
     from configs import default
 
-    base = default.get_config().to_dict()
+    base = _measured_base()
     c = default.get_config("splitter_members").to_dict()
     for name in ("local", "start", "ranker"):
         assert c["stages"][name] == base["stages"][name]
@@ -231,7 +244,7 @@ def test_splitter_members_variant_fits_five_splitters_and_changes_nothing_else()
 def test_context_variant_is_retraces_splitter_reading_the_context_and_the_1204_ranker():
     from configs import default
 
-    base, c = default.get_config().to_dict(), default.get_config("context").to_dict()
+    base, c = _measured_base(), default.get_config("context").to_dict()
     retrace = default.get_config("retrace").to_dict()
     assert c["stages"]["splitter"] == {**retrace["stages"]["splitter"], "context": True}
     # the default's ranker as it was on 2026-12-04: no printed words, no heading shares,

@@ -43,6 +43,7 @@ from jdraw.planner.corners import (
     t_cuts,
 )
 from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_links, join_features, join_pairs
+from jdraw.planner.more_joins import most_joins
 from jdraw.planner.ranker import MLP, chunked, stack_mlps, with_context
 from jdraw.planner.stroke_tokens import CONTEXT_FEATURES, context, stroke_masks, tokens
 
@@ -257,7 +258,8 @@ def join_many(
     splitter's own); where it is not 0 and the splitter learned it (``t_cuts``), strokes
     are first cut where another's end meets their line
     (:func:`jdraw.planner.corners.t_cuts`), and a cut whose two ends no chosen join
-    takes is joined again.
+    takes is joined again. Where ``retrace`` is not 0, as many of the chosen pairs are
+    joined as can be (:func:`jdraw.planner.more_joins.most_joins`).
     """
     inks = [None] * len(characters) if inks is None else inks
     drawn = [None] * len(characters) if drawn is None else drawn
@@ -280,6 +282,8 @@ def join_many(
         at += len(pairs)
         chosen = [pairs[k] for k in np.argsort(-z) if z[k] > threshold]
         chosen += seam  # a T's cut that no join took is joined again, last
+        if retrace:  # joined-up writing: one join given up for two where that can be
+            chosen = most_joins(chosen, len(strokes))
         reach = max(splitter.reach, retrace)
         out.append(join_pairs(strokes, chosen, ink, reach) if chosen else list(strokes))
     return out

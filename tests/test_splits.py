@@ -548,3 +548,19 @@ def test_a_t_cut_is_labelled_by_whether_the_writer_ran_straight_through_it():
         plain = splitter_train.examples([bar, traced_stem], refs, ink, retrace=40)[3]
         assert len(yj) > len(plain)  # the cut's pairs are examples too
         assert yj[seam] == rejoin  # the bar's two parts
+
+
+def test_a_pairs_features_count_the_other_strokes_ends_and_lines_near_it():
+    """Two ends 3 px apart on one line (meeting at x 41.5): a third stroke that starts
+    2 px below the meeting point is one end near it and a line 2 px off; the pair's own
+    strokes and a far stroke count for neither (their crowd gathered once or per pair)."""
+    a, b = _line(10, 50, 40, 50), _line(43, 50, 80, 50)
+    stem, far = _line(42, 52, 42, 80), _line(90, 90, 95, 95)
+    pair = (0, True, 1, False)
+    ends, lines = 14, 15  # the features' places (joins.join_features)
+    for strokes, want in (([a, b, stem, far], (0.25, 0.2)), ([a, b, far], (0.0, 1.0))):
+        f = joins.join_features(strokes, pair)
+        assert (f[ends], f[lines]) == pytest.approx(want)
+        np.testing.assert_array_equal(
+            f, joins.join_features(strokes, pair, near=joins.crowd(strokes))
+        )

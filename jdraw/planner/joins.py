@@ -274,14 +274,23 @@ def end_links(strokes, ink=None, gap: int = GAP, reach: int = REACH, retrace: in
     return out
 
 
-def join_features(strokes, pair, box=None, link=None) -> np.ndarray:
+def crowd(strokes) -> tuple[np.ndarray, ...]:
+    """Every point of ``strokes`` and every stroke's two ends, each with its stroke's index:
+    what :func:`join_features` counts near a pair, gathered once for all of a drawing's pairs."""
+    S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
+    owner = np.repeat(np.arange(len(S)), [len(q) for q in S])
+    ends = np.asarray([e for q in S for e in (q[0], q[-1])]).reshape(-1, 2)
+    return np.concatenate(S) if S else np.zeros((0, 2)), owner, ends, np.arange(len(ends)) // 2
+
+
+def join_features(strokes, pair, box=None, link=None, near=None) -> np.ndarray:
     """``float32 [JOIN_GEOMETRY]`` of joining two stroke ends (:func:`end_links`).
 
     How straight the line runs on through the two ends (near and further
     back), their headings, where they are, the gap and the moves of their
     :func:`bridge` (``link``, the points between), both strokes' lengths, whether each end is
     where its stroke began, and how crowded the place is (other ends and
-    other lines near it).
+    other lines near it; ``near``: the drawing's :func:`crowd`, else computed here).
     """
     S = [np.asarray(x, np.float64).reshape(-1, 2) for x in strokes]
     box = _box(S) if box is None else box
@@ -291,13 +300,11 @@ def join_features(strokes, pair, box=None, link=None) -> np.ndarray:
     pb, hb, fb = _end(S[j], je)
     c = (pa + pb) / 2
     la, lb = _arclength(S[i])[-1], _arclength(S[j])[-1]
-    ends, lines = 0, 100.0
-    for k, q in enumerate(S):
-        for e in (q[0], q[-1]):
-            if k not in (i, j) and np.abs(e - c).max() <= 2 * GAP:
-                ends += 1
-        if k not in (i, j):
-            lines = min(lines, float(np.abs(q - c).max(-1).min()))
+    points, owner, tips, tip_owner = crowd(S) if near is None else near
+    other = (tip_owner != i) & (tip_owner != j)
+    ends = int(np.count_nonzero(other & (np.abs(tips - c).max(-1) <= 2 * GAP)))
+    other = (owner != i) & (owner != j)
+    lines = min(100.0, float(np.abs(points[other] - c).max(-1).min())) if other.any() else 100.0
     f = [
         float(ha @ hb),
         float(fa @ fb),

@@ -42,7 +42,14 @@ from jdraw.planner.corners import (
     split_at,
     t_cuts,
 )
-from jdraw.planner.joins import JOIN_GEOMETRY, REACH, end_links, join_features, join_pairs
+from jdraw.planner.joins import (
+    JOIN_GEOMETRY,
+    REACH,
+    crowd,
+    end_links,
+    join_features,
+    join_pairs,
+)
 from jdraw.planner.more_joins import most_joins
 from jdraw.planner.ranker import MLP, chunked, stack_mlps, with_context
 from jdraw.planner.stroke_tokens import CONTEXT_FEATURES, context, stroke_masks, tokens
@@ -191,12 +198,12 @@ def all_pairs(
     pairs = [q for q, _ in found]
     feats = []
     if pairs:
-        box = _box(strokes)
+        box, near = _box(strokes), crowd(strokes)
         if patches:
             masks = stroke_masks(strokes)
             seen = masks.any(0) if drawn is None else np.asarray(drawn, bool)
         for q, link in found:
-            g = join_features(strokes, q, box, link)
+            g = join_features(strokes, q, box, link, near)
             f = [g if patches or reach else g[:NEAR_GEOMETRY]]
             if patches:
                 i, ie, j, je = q

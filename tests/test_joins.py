@@ -106,20 +106,3 @@ def test_gap_bounds_the_distance_between_ends(gap):
     a, b = _line(10, 50, 40, 50), _line(40 + gap, 50, 80, 50)
     assert len(joins.join_strokes([a, b], gap=gap)) == 1
     assert len(joins.join_strokes([a, b], gap=gap - 1)) == 2
-
-
-def test_crumbs_are_drawn_as_part_of_the_stroke_they_touch():
-    bar = _line(10, 50, 60, 50)
-    tail = _line(61, 51, 63, 53)  # touches the bar's end: drawn on from it
-    nub = _line(30, 49, 30, 47)  # touches its middle: a detour out and back
-    dot = _line(80, 80, 81, 80)  # touches nothing: stays a stroke
-    long = _line(40, 51, 40, 60)  # longer than a crumb: stays a stroke
-    strokes = [bar, nub, tail, dot, long]
-    out = joins.absorb_crumbs(strokes)
-    assert len(out) == 3
-    np.testing.assert_array_equal(geometry.render_strokes(out), geometry.render_strokes(strokes))
-    host = out[0]
-    assert tuple(host[0]) == (10, 50) and tuple(host[-1]) == (63, 53)
-    assert np.abs(np.diff(host, axis=0)).max() <= 1  # every move to a neighbour
-    assert any(np.array_equal(s, dot) for s in out)
-    assert len(joins.absorb_crumbs(strokes, crumb=0)) == 5

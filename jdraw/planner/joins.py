@@ -13,8 +13,7 @@ round to be joined inks the same pixels (:func:`jdraw.planner.ranker.reverse`).
 Whether ``jdraw.plan`` joins is a setting of the checkpoint (its bundle's
 ``planner.join``), so the paper's model plans as it always has.
 
-Also here: :func:`absorb_crumbs` (a stroke of a few pixels drawn as part of
-the stroke it touches), and the candidates of the learned joiner of
+Also here: the candidates of the learned joiner of
 :mod:`jdraw.planner.splits`: pairs of stroke ends close together on ink
 (:func:`end_pairs`), their features (:func:`join_features`), their label
 from the reference strokes (:func:`end_owner`) and the strokes with chosen
@@ -133,61 +132,6 @@ def join_plan(plan, targets=None, max_rows: int | None = None):
             out = s
         strokes.append(out)
     return Plan.from_strokes(strokes, plan.truncated, width=plan.actions.shape[1])
-
-
-CRUMB = 5  # pixels: a stroke this short that touches another is drawn as part of it
-
-
-def absorb_crumbs(strokes, crumb: int = CRUMB) -> list:
-    """Strokes with each crumb drawn as part of a stroke it touches.
-
-    A crumb is a stroke of at most ``crumb`` pixels, most often a pixel or two
-    the local model left at a junction and came back for: a pen lift of its
-    own for a dot of ink no person would lift for. When one of its ends
-    touches (8-neighbour) another stroke, it is drawn there: on from that
-    stroke's end if it touches an end, else as a detour out along it and back
-    from the point it touches. No pixel is added or lost. Crumbs that touch
-    nothing (a dot) stay strokes of their own.
-    """
-    from jdraw.planner.stroke_tokens import path_pixels
-
-    S = [np.asarray(s, np.float64).reshape(-1, 2) for s in strokes]
-    # A path inks at least as many pixels as its box is long: only short ones are counted.
-    size = [
-        len(path_pixels(s)) if np.ptp(s, axis=0).max() < crumb else crumb + 1 + len(s) for s in S
-    ]
-    k = 0
-    while k < len(S):
-        if size[k] > crumb or len(S) < 2:
-            k += 1
-            continue
-        c = S[k]
-        host = None
-        for j, p in enumerate(S):
-            if j == k:
-                continue
-            for from_start in (True, False):
-                d = np.abs(p - (c[0] if from_start else c[-1])).max(-1)
-                i = int(d.argmin())
-                if d[i] <= 1 and (host is None or size[j] > size[host[0]]):
-                    host = (j, i, from_start)
-        if host is None:
-            k += 1
-            continue
-        j, i, from_start = host
-        out = c if from_start else reverse(c)  # the crumb from the end touching the host
-        p = S[j]
-        if i == len(p) - 1:
-            S[j] = np.concatenate([p, out])
-        elif i == 0:
-            S[j] = np.concatenate([reverse(out), p])
-        else:
-            back = reverse(out)
-            S[j] = np.concatenate([p[: i + 1], out, back[1:], p[i:]])
-        size[j] += size[k]
-        del S[k], size[k]
-        k = 0  # a host may now touch another crumb
-    return S
 
 
 # ----------------------------------------------------------------------------

@@ -23,7 +23,7 @@ ends, and only where they are ink: straight across a gap of a few pixels, or
 along the ink over a crossing the line was broken at. A stroke all of whose
 pixels others draw is then dropped. Last, a crumb (a stroke of a few pixels
 that touches another, most often what the local model left at a junction)
-is drawn as part of the stroke it touches (:func:`jdraw.planner.joins.absorb_crumbs`).
+is drawn as part of the stroke it touches (:func:`jdraw.planner.crumbs.absorb_crumbs`).
 """
 
 from __future__ import annotations
@@ -331,10 +331,10 @@ def edit_plan(
     ``retrace``, how far back over a stroke's own line a join may go),
     then strokes drawn over by others are dropped (:func:`drop_covered`) and
     crumbs of a few pixels are drawn as part of the stroke they touch
-    (:func:`jdraw.planner.joins.absorb_crumbs`). An image whose edited strokes
+    (:func:`jdraw.planner.crumbs.absorb_crumbs`). An image whose edited strokes
     would need more than ``max_rows`` action rows keeps its strokes.
     """
-    from jdraw.planner.joins import absorb_crumbs
+    from jdraw.planner.crumbs import absorb_crumbs
     from jdraw.plans import Plan, actions_from_strokes
 
     drawn = None if drawn is None else [np.asarray(d, bool) for d in drawn]

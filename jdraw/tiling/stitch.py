@@ -8,7 +8,7 @@ import numpy as np
 from scipy.cluster.hierarchy import DisjointSet
 
 from jdraw import geometry
-from jdraw.planner.joins import absorb_crumbs
+from jdraw.planner.crumbs import absorb_crumbs
 
 
 def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
@@ -150,7 +150,7 @@ def stitch(
     (most often a pixel or two a tile drew on its border beside a stroke that
     crosses it, which no join can take, its end being joined already) is drawn
     as part of the stroke it touches, as the planner's own join stage draws the
-    crumbs of a tile (:func:`jdraw.planner.joins.absorb_crumbs`), not as a pen
+    crumbs of a tile (:func:`jdraw.planner.crumbs.absorb_crumbs`), not as a pen
     lift of its own.
     """
     paths: list[np.ndarray | None] = [_trim_retrace(geometry.polyline_pixels(p)) for _, p in pieces]

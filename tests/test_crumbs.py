@@ -47,3 +47,17 @@ def test_a_stroke_that_adds_a_pixel_or_two_is_cut_down_to_them_and_drawn_with_it
         np.testing.assert_array_equal(crumbs.trim_to_new_ink([stem_and_slant, other])[1], other)
     covered = _line(20, 30, 20, 40)
     np.testing.assert_array_equal(crumbs.trim_to_new_ink([stem_and_slant, covered])[1], covered)
+
+
+def test_with_ends_a_stroke_adding_pixels_in_two_runs_loses_only_its_covered_ends():
+    line = _line(10, 50, 40, 50)
+    # Drawn over the line's middle, adding a pixel above it at two places.
+    other = np.array(
+        [[18, 50], [19, 50], [20, 49], [21, 50], [22, 50], [23, 50], [24, 49], [25, 50], [26, 50]],
+        float,
+    )
+    cut = crumbs.trim_to_new_ink([line, other], ends=True)[1]
+    np.testing.assert_array_equal(cut, other[2:7])  # from the first new pixel to the last
+    np.testing.assert_array_equal(crumbs.trim_to_new_ink([line, other])[1], other)
+    covered = _line(15, 50, 20, 50)
+    assert crumbs.trim_to_new_ink([line, covered], drop=True)[1] is None

@@ -5,7 +5,8 @@ and comes back for it later: a pen lift of its own for a dot of ink no person wo
 lift for. The join stage's last step (:func:`jdraw.planner.splits.edit_plan`) and the
 tiler's stitcher (:mod:`jdraw.tiling.stitch`) draw such a crumb as part of the stroke
 it touches (:func:`absorb_crumbs`), a stroke that adds no more than a crumb's pixels
-first cut down to them (:func:`trim_to_new_ink`).
+first cut down to them (:func:`trim_to_new_ink`, which the stitcher also uses to trim
+a tile's fragments and drop those that add nothing).
 """
 
 from __future__ import annotations
@@ -71,18 +72,24 @@ def absorb_crumbs(strokes, crumb: int = CRUMB) -> list:
     return S
 
 
-def trim_to_new_ink(strokes, crumb: int = CRUMB) -> list:
+def trim_to_new_ink(strokes, crumb: int = CRUMB, *, drop: bool = False, ends: bool = False) -> list:
     """Strokes with each one that adds at most ``crumb`` pixels cut down to those pixels.
 
     When the local model cuts a sharp corner by a pixel (an N's apex), the
     start model comes back for that pixel and the local model runs on from it
     along the line already drawn, up to its bound of moves that ink nothing
-    new: a pen lift and a line drawn twice for a pixel or two. Such a stroke
-    is replaced by the pixels only it inks, in the order it first reaches
-    them, when there are at most ``crumb`` of them and they form one
-    8-connected run; :func:`absorb_crumbs` then draws them as part of the
-    stroke they touch. Strokes that ink nothing new are left as they are
-    (:func:`jdraw.planner.splits.drop_covered` drops them). No pixel is lost.
+    new: a pen lift and a line drawn twice for a pixel or two. A tile's
+    planner, retracing a stroke's end to reach a pixel or two beyond it, does
+    the same. Such a stroke is replaced by the pixels only it inks, in the
+    order it first reaches them, when they form one 8-connected run;
+    :func:`absorb_crumbs` then draws them as part of the stroke they touch.
+    Strokes adding least go first, and those they free are counted again.
+
+    With ``ends``, a stroke whose new pixels are in several runs loses the
+    pixels others ink from its two ends only, so it stays one path. A stroke
+    that adds nothing is set to ``None`` with ``drop``, else left as it is
+    (:func:`jdraw.planner.splits.drop_covered` drops it). Strokes cut down are
+    ``int64`` pixel paths. No pixel is lost.
     """
     from jdraw.planner.stroke_tokens import path_pixels
 
@@ -95,17 +102,24 @@ def trim_to_new_ink(strokes, crumb: int = CRUMB) -> list:
     width = int(max(p[:, 0].max() for p in pix)) + 2
     ids = [np.unique(p[:, 1] * width + p[:, 0]) for p in pix]
     every, count = np.unique(np.concatenate(ids), return_counts=True)
-    new = [int((count[np.searchsorted(every, i)] == 1).sum()) for i in ids]
-    for k in np.argsort(new, kind="stable"):
-        at = np.searchsorted(every, pix[k][:, 1] * width + pix[k][:, 0])
-        mine = count[at] == 1
-        if mine.all() or not mine.any():
+    at = [np.searchsorted(every, p[:, 1] * width + p[:, 0]) for p in pix]
+    new = [int((count[np.unique(a)] == 1).sum()) for a in at]
+    for k in sorted((k for k in range(len(S)) if new[k] <= crumb), key=new.__getitem__):
+        mine = count[at[k]] == 1  # others may have been cut down since
+        if not (mine.any() or drop):
             continue
-        _, first = np.unique(at[mine], return_index=True)
-        run = pix[k][mine][np.sort(first)]
-        if len(run) > crumb or (len(run) > 1 and np.abs(np.diff(run, axis=0)).max() > 1):
-            continue
-        count[np.searchsorted(every, ids[k])] -= 1  # the stroke's old pixels ...
-        count[np.unique(at[mine])] += 1  # ... less those it keeps
-        S[k] = (run + lo).astype(np.float64)
+        keep = np.zeros(len(mine), bool)
+        if mine.any():
+            _, first = np.unique(at[k][mine], return_index=True)
+            keep[np.flatnonzero(mine)[np.sort(first)]] = True
+            run = pix[k][keep]
+            if len(run) > 1 and np.abs(np.diff(run, axis=0)).max() > 1:
+                if not ends:
+                    continue
+                i0, i1 = np.flatnonzero(mine)[[0, -1]]
+                keep[:] = False
+                keep[i0 : i1 + 1] = True
+        count[np.unique(at[k])] -= 1  # the stroke's old pixels ...
+        count[np.unique(at[k][keep])] += 1  # ... less those it keeps
+        S[k] = pix[k][keep] + lo if keep.any() else None
     return S

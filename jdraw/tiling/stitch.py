@@ -8,7 +8,7 @@ import numpy as np
 from scipy.cluster.hierarchy import DisjointSet
 
 from jdraw import geometry
-from jdraw.planner.crumbs import absorb_crumbs
+from jdraw.planner.crumbs import absorb_crumbs, trim_to_new_ink
 
 
 def _outward(path: np.ndarray, end: int, reach: int = 3) -> np.ndarray:
@@ -52,51 +52,6 @@ def _trim_retrace(path: np.ndarray, least: int = 2) -> np.ndarray:
     if lo < least:
         lo = 0
     return path[lo:hi]
-
-
-def _trim_fragments(paths: list[np.ndarray | None], fragment: int) -> int:
-    """Trims fragments to the pixels no other path draws.
-
-    A fragment is a path that adds at most ``fragment`` pixels to what the
-    other paths draw (a retrace with a pixel or two beyond a stroke's end).
-    It is cut to its new pixels in the order first drawn when they form one
-    8-connected run, else covered pixels are removed from its ends only, so it
-    stays one connected path; a fragment adding nothing is dropped (set to
-    ``None``). Fragments adding least go first. Returns the number dropped.
-    """
-    own = [set(map(tuple, p.tolist())) if p is not None else set() for p in paths]
-    count: dict[tuple, int] = {}  # how many paths draw each pixel
-    for px in own:
-        for q in px:
-            count[q] = count.get(q, 0) + 1
-
-    def fresh(i: int) -> list[tuple]:
-        """Pixels only path ``i`` draws, in the order it first draws them."""
-        return [q for q in dict.fromkeys(map(tuple, paths[i].tolist())) if count[q] == 1]
-
-    adds = {i: len(fresh(i)) for i in range(len(paths)) if paths[i] is not None}
-    small = {i: n for i, n in adds.items() if n <= fragment}
-    dropped = 0
-    for i in sorted(small, key=small.get):
-        new = fresh(i)  # others may have been trimmed since
-        p = paths[i]
-        if not new:
-            paths[i] = None
-            dropped += 1
-        elif np.all(np.abs(np.diff(np.asarray(new), axis=0)) <= 1):
-            paths[i] = np.asarray(new, np.int64)  # one 8-connected run of new pixels
-        else:
-            lo, hi = 0, len(p)
-            while count[tuple(p[lo].tolist())] > 1:
-                lo += 1
-            while count[tuple(p[hi - 1].tolist())] > 1:
-                hi -= 1
-            paths[i] = p[lo:hi]
-        kept = set(map(tuple, paths[i].tolist())) if paths[i] is not None else set()
-        for q in own[i] - kept:
-            count[q] -= 1
-        own[i] = kept
-    return dropped
 
 
 def stitch(
@@ -144,7 +99,8 @@ def stitch(
 
     Where a stroke doubles back over itself at an end, that end is cut back
     to the turn. Fragments (the planner retracing a stroke's end to reach a
-    pixel or two beyond it) are then trimmed to the pixels nothing else draws.
+    pixel or two beyond it) are then trimmed to the pixels nothing else draws
+    (:func:`jdraw.planner.crumbs.trim_to_new_ink`; one adding nothing is dropped).
     Border joins are made first, then the closest, then the straightest
     continuations; every end is joined at most once. Last, a crumb left over
     (most often a pixel or two a tile drew on its border beside a stroke that
@@ -155,7 +111,8 @@ def stitch(
     """
     paths: list[np.ndarray | None] = [_trim_retrace(geometry.polyline_pixels(p)) for _, p in pieces]
     tile_of = [t for t, _ in pieces]
-    dropped = _trim_fragments(paths, fragment)
+    paths = trim_to_new_ink(paths, fragment, drop=True, ends=True)
+    dropped = sum(p is None for p in paths)
     live = [i for i, p in enumerate(paths) if p is not None and len(p)]
     size = {i: len(np.unique(_codes(paths[i]))) for i in live}
 

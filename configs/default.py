@@ -46,8 +46,9 @@ bundle's json files keep the configs, and tests/test_pipeline.py compares them
 with these; stage 4 was made again on 2026-12-06, three rankers as one, by the
 ``ranker_only`` variant, and stage 3 on 2026-12-07 by the ``joined_t_cuts`` and
 ``joined_t_cuts_patches`` variants, whose docstrings have the commands).
-Result (docs/scripts.md, results/beyond_default_trim.json: this bundle with the planner as
-it is since the crumb trim of 2026-12-07; results/beyond_default_tcut.json before it).
+Result (docs/scripts.md, results/beyond_default_core.json: this bundle with the planner as
+it is since joined-up writing is drawn at the size it was learned at, 2026-12-07;
+results/beyond_default_trim.json and beyond_default_tcut.json before it).
 
 Wall time on the 2-core CPU: about 58 min, the sum of the stages' recorded
 times (training loops 2,105 s and 298 s; the bundle's json files), the splitter's

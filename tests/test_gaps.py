@@ -54,3 +54,37 @@ def test_a_tiled_drawing_is_drawn_at_min_gap_over_its_gap():
     small = prepare(drawn([(20, 20), (90, 20), (90, 90)], shape=(120, 120)))
     scale, single = layout.choose_scale(small, 4.0)
     assert single and np.isclose(scale, layout.CHAR_EXTENT / 70, rtol=0.1)
+
+
+def test_joined_up_writing_is_drawn_at_the_size_the_planner_learned_it(monkeypatch):
+    """A joined word whose lines would allow it larger is drawn with its x-height band
+    JOINED_CORE canvas px high (at the default min_gap; twice that at twice min_gap).
+    A row of kanji-sized boxes, whose lines allow the same scale, is drawn at it."""
+    x_height = 80.0
+    humps = [
+        (20 + x, 150 - x_height * abs(np.sin(np.pi * x / 60))) for x in np.arange(0, 1200, 2.0)
+    ]
+    word = prepare(drawn(humps, shape=(200, 1240)))
+    boxes = prepare(
+        drawn(
+            *[
+                [
+                    (20 + 180 * k, 20),
+                    (180 + 180 * k, 20),
+                    (180 + 180 * k, 180),
+                    (20 + 180 * k, 180),
+                    (20 + 180 * k, 20),
+                ]
+                for k in range(6)
+            ],
+            shape=(200, 1100),
+        )
+    )
+    monkeypatch.setattr(layout, "choose_scale", lambda prep, min_gap: (0.8, False))
+    scale, tiles, _ = layout.layout(word)
+    assert tiles and all(t.joined for t in tiles)
+    assert abs(scale * x_height - layout.JOINED_CORE) <= 0.1 * layout.JOINED_CORE, scale
+    wider, _, _ = layout.layout(word, min_gap=2 * layout.MIN_GAP)
+    assert np.isclose(wider, 2 * scale, rtol=0.05)
+    scale, tiles, _ = layout.layout(boxes)
+    assert scale == 0.8 and not any(t.joined for t in tiles)

@@ -6,7 +6,8 @@ its centrelines are drawn on one large canvas at that scale, split into
 connected regions (a cursive word, a printed letter, a sketch), and every
 region wider or taller than a canvas is laid out as a grid of canvas-sized tiles.
 A region much wider than its text line is high is joined-up writing
-(:func:`joined_pieces`), and its tiles say so.
+(:func:`joined_pieces`), and its tiles say so; a drawing that is mostly such writing
+is drawn no larger than the planner learned it (:func:`joined_scale`).
 """
 
 from __future__ import annotations
@@ -34,6 +35,12 @@ FIT_SLACK = 0.7
 # its x-height; a printed m is under 2) runs through three or more letters: joined-up
 # writing (a cursive word, a joined Arabic piece; :func:`joined_pieces`).
 JOINED_WIDTH = 2.5
+# Canvas pixels kept between separate lines unless asked otherwise (plan_image's min_gap).
+MIN_GAP = 4.0
+# Canvas pixels high that joined-up writing's x-height band is drawn at most (at MIN_GAP):
+# the median x-height of the cursive fragments the planner learned joined-up writing from
+# (jdraw.data.cursive.fragments: 16 to 41 px, 5th to 95th percentile, median 24.7).
+JOINED_CORE = 25.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -55,7 +62,7 @@ class Tile:
     joined: bool = False
 
 
-def choose_scale(prep: Prepared, min_gap: float = 4.0) -> tuple[float, bool]:
+def choose_scale(prep: Prepared, min_gap: float = MIN_GAP) -> tuple[float, bool]:
     """Canvas pixels per input pixel, and whether the drawing fits one canvas.
 
     Centrelines of strokes that do not touch are at least a stroke width
@@ -99,24 +106,23 @@ def tall_boxes(boxes: np.ndarray) -> np.ndarray:
     return np.maximum(heights, widths) >= 0.5 * typical
 
 
-def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
-    """``bool [n]``: which connected pieces of centrelines are joined-up writing.
+def line_cores(labels: np.ndarray, stats: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each connected piece's text line and the height of that line's core, in pixels.
 
     ``labels`` and ``stats`` are ``cv2.connectedComponentsWithStats``' of the
-    centrelines (piece ``k`` is label ``k + 1``). A piece at least
-    :data:`JOINED_WIDTH` times as wide as its text line's core is high runs through
-    several letters: a cursive word, a joined piece of Arabic, a Devanagari word
-    under its headline. The core is the band of rows that cross at least half as
-    many lines as the busiest tenth of rows: a line of letters' x-height band, which
-    every letter crosses and only the tall ones rise above, and most of a line of
-    kanji. A printed letter, a kanji's part or a dot is narrower; a long flat piece
-    (a dash, a kanji's one bar) may count, and being one straight line it has no
-    strokes to join back over it.
+    centrelines (piece ``k`` is label ``k + 1``). The core is the band of rows that
+    cross at least half as many lines as the busiest tenth of rows: a line of
+    letters' x-height band, which every letter crosses and only the tall ones rise
+    above, and most of a line of kanji.
+
+    Returns:
+      ``(line_of [n] int, core [n] int)``: each piece's line (:func:`text_lines`) and
+      its line's core height.
     """
     x, y, w, h = (stats[1:, k].astype(np.int64) for k in range(4))
-    out = np.zeros(len(x), bool)
+    core = np.ones(len(x), np.int64)
     if not len(x):
-        return out
+        return np.zeros(0, int), core
     line_of, _ = text_lines(np.stack([x, y, x + w - 1, y + h - 1], 1))
     for k in np.unique(line_of):
         on = line_of == k
@@ -130,9 +136,45 @@ def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
             before[:, d:] |= rows[:, :-d]
         crossings = np.count_nonzero(rows & ~before, axis=1)
         busy = np.percentile(crossings[crossings > 0], 90)
-        core = np.count_nonzero(crossings >= 0.5 * busy)
-        out[on] = w[on] >= JOINED_WIDTH * max(core, 1)
-    return out
+        core[on] = max(np.count_nonzero(crossings >= 0.5 * busy), 1)
+    return line_of, core
+
+
+def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
+    """``bool [n]``: which connected pieces of centrelines are joined-up writing.
+
+    ``labels`` and ``stats`` are ``cv2.connectedComponentsWithStats``' of the
+    centrelines (piece ``k`` is label ``k + 1``). A piece at least
+    :data:`JOINED_WIDTH` times as wide as its text line's core (:func:`line_cores`)
+    is high runs through several letters: a cursive word, a joined piece of Arabic,
+    a Devanagari word under its headline. A printed letter, a kanji's part or a dot
+    is narrower; a long flat piece (a dash, a kanji's one bar) may count, and being
+    one straight line it has no strokes to join back over it.
+    """
+    _, core = line_cores(labels, stats)
+    return stats[1:, cv2.CC_STAT_WIDTH].astype(np.int64) >= JOINED_WIDTH * core
+
+
+def joined_scale(labels: np.ndarray, stats: np.ndarray, min_gap: float = MIN_GAP) -> float:
+    """How much smaller to draw mostly joined-up writing, so that its letters come out
+    the size the planner learned them at (1.0: as they are).
+
+    Where most centreline pixels are joined-up writing (:func:`joined_pieces`) and its
+    lines' core (:func:`line_cores`, each joined piece's counted by its pixels, the
+    median) is higher than :data:`JOINED_CORE` times ``min_gap / MIN_GAP``, the factor
+    that makes it that high. A larger ``min_gap`` draws everything larger, this too.
+    """
+    if len(stats) < 2:
+        return 1.0
+    _, core = line_cores(labels, stats)
+    joined = stats[1:, cv2.CC_STAT_WIDTH].astype(np.int64) >= JOINED_WIDTH * core
+    area = stats[1:, cv2.CC_STAT_AREA]
+    if area[joined].sum() * 2 <= area.sum():
+        return 1.0
+    order = np.argsort(core[joined], kind="stable")
+    cum = np.cumsum(area[joined][order])
+    typical = core[joined][order][np.searchsorted(cum, 0.5 * cum[-1])]
+    return min(1.0, JOINED_CORE * min_gap / MIN_GAP / typical)
 
 
 def text_lines(
@@ -207,7 +249,7 @@ def _reading_order(
 
 
 def layout(
-    prep: Prepared, min_gap: float = 4.0, rtl: bool = False
+    prep: Prepared, min_gap: float = MIN_GAP, rtl: bool = False
 ) -> tuple[float, list[Tile], list[tuple]]:
     """Splits a prepared image into planner inputs.
 
@@ -226,13 +268,21 @@ def layout(
         joined = mostly_joined(prep.skeleton)
         return scale, [Tile(0, tf, canvas, joined)], [ink_bbox(prep.polylines)]
     h, w = prep.shape
+
+    def draw(scale):
+        big = render_polylines(
+            prep.polylines,
+            CanvasTransform(scale),
+            (int(np.ceil(scale * (h - 1))) + 1, int(np.ceil(scale * (w - 1))) + 1),
+        )
+        return cv2.connectedComponentsWithStats(big.astype(np.uint8), connectivity=8)
+
+    n, labels, stats, _ = draw(scale)
+    smaller = joined_scale(labels, stats, min_gap)
+    if smaller < 1.0:
+        scale *= smaller
+        n, labels, stats, _ = draw(scale)
     whole = CanvasTransform(scale)
-    big = render_polylines(
-        prep.polylines,
-        whole,
-        (int(np.ceil(scale * (h - 1))) + 1, int(np.ceil(scale * (w - 1))) + 1),
-    )
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(big.astype(np.uint8), connectivity=8)
     boxes = []
     for k in range(1, n):
         x, y, bw, bh = stats[k, :4]

@@ -156,7 +156,9 @@ def plan_image(
         -> jdraw.Plan``; default :func:`jdraw.plan`.
       checkpoint, max_steps: passed to the planner when given.
       polarity: ``"auto"``, ``"dark"`` or ``"light"`` ink.
-      min_gap: canvas pixels kept between the centrelines of separate strokes.
+      min_gap: canvas pixels kept between the centrelines of separate strokes
+        (joined-up writing is drawn no larger than the planner learned it, and
+        its lines may come closer: :func:`jdraw.tiling.layout.joined_scale`).
       batch_size: most tiles per planner call; a call of several tiles is padded
         to this (rounded up to a power of two), so a jitted planner compiles for
         two shapes only: one tile and a full batch.

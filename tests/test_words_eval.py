@@ -71,3 +71,27 @@ def test_untraced_pieces_cut_a_stroke_where_it_goes_back_over_its_line():
     ink = np.zeros((60, 60), bool)
     r = words.score_word(ink, [spur + 5, short + 5], [spur + 5])
     assert r["untraced_ratio"] == pytest.approx(1.5)
+
+
+def test_words_can_be_written_at_one_height(monkeypatch):
+    """``height=`` writes every word that high (the ink's top to its bottom) instead of
+    by its hash, and the planner sees that drawing."""
+    from types import SimpleNamespace
+
+    from jdraw.tiling import plan_image as tiling
+
+    seen = []
+
+    def planner(img, **kwargs):
+        ink = np.flatnonzero((np.asarray(img) < 128).any(1))
+        seen.append(int(ink[-1] - ink[0]))
+        return SimpleNamespace(strokes=[])
+
+    monkeypatch.setattr(tiling, "plan_image", planner)
+    res = words.evaluate_words("val", 3, height=150, progress=False)
+    assert res["height"] == 150 and [p["height"] for p in res["words"]] == [150] * 3
+    assert all(abs(h - 150) <= words.PEN + 1 for h in seen), seen  # the pen and its AA edge
+    res = words.evaluate_words("val", 3, progress=False)
+    assert [p["height"] for p in res["words"]] == [
+        words.word_height(w) for w in cursive.split_words("val")[:3]
+    ]

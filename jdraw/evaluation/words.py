@@ -159,6 +159,7 @@ def evaluate_words(
     split_strokes: bool | None = None,
     progress: bool = True,
     retrace: bool = True,
+    height: int | None = None,
 ) -> dict:
     """Plans the first ``n`` words of ``split`` (all if ``None``) and scores them.
 
@@ -168,6 +169,7 @@ def evaluate_words(
         the checkpoint says).
       retrace: ``plan_image``'s ``retrace=`` (joins back over the line in joined-up
         writing).
+      height: every word this many pixels high (``None``: :func:`word_height`'s 100-300).
 
     Returns:
       the means over words (module docstring), ``n``, ``seconds`` and ``words``:
@@ -181,7 +183,7 @@ def evaluate_words(
     per = []
     t0 = time.time()
     for w in tqdm(words, desc=f"cursive words ({split})", unit="word", disable=not progress):
-        h = word_height(w)
+        h = word_height(w) if height is None else int(height)
         img, written = render_word(w, h)
         plan = plan_image(
             img,
@@ -198,6 +200,7 @@ def evaluate_words(
         "n": len(per),
         "checkpoint": str(checkpoint) if checkpoint is not None else "bundled default",
         "retrace": retrace,
+        "height": "100-300 by word" if height is None else int(height),
         "stroke_ratio": mean("stroke_ratio"),
         "stroke_ratio_total": sum(p["drawn"] for p in per) / max(sum(p["written"] for p in per), 1),
         "strokes_per_piece": mean("strokes_per_piece"),
@@ -243,8 +246,13 @@ def main(argv=None):
         action="store_true",
         help="plan_image(retrace=False): no joins back over the line in joined-up writing",
     )
+    p.add_argument(
+        "--height", type=int, default=None, help="every word this many px high (default: 100-300)"
+    )
     a = p.parse_args(argv)
-    res = evaluate_words(a.split, a.n or None, checkpoint=a.checkpoint, retrace=not a.no_retrace)
+    res = evaluate_words(
+        a.split, a.n or None, checkpoint=a.checkpoint, retrace=not a.no_retrace, height=a.height
+    )
     print(summary(res))
     if a.out:
         pathlib.Path(a.out).write_text(json.dumps(res, indent=2) + "\n")

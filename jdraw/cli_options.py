@@ -13,7 +13,8 @@ word, a sentence or a line drawing of any size. The image is binarised
 character-sized regions or tiles, planned stroke by stroke with the learned
 model, and written out in the image's own pixel coordinates. The model plans
 on 100x100-pixel canvases, "tiles": a small drawing is fitted to one tile;
-a bigger one is scaled so its lines stay apart, each connected piece of ink
+a bigger one is scaled so its lines stay apart (joined-up writing no larger
+than the model learned it), each connected piece of ink
 gets a tile, pieces bigger than a tile are cut into a grid of 100x100 tiles,
 and strokes crossing a tile border are joined again.
 """

@@ -88,3 +88,24 @@ def test_joined_up_writing_is_drawn_at_the_size_the_planner_learned_it(monkeypat
     assert np.isclose(wider, 2 * scale, rtol=0.05)
     scale, tiles, _ = layout.layout(boxes)
     assert scale == 0.8 and not any(t.joined for t in tiles)
+
+
+def test_joined_up_writing_is_drawn_no_smaller_than_keeps_its_lines_apart(monkeypatch):
+    """Shrinking stops where the drawing's separate lines (its measured gap) would come
+    closer than SEPARATE canvas px: a long line drawing taken for joined-up writing (a
+    skyline over houses) keeps its detail."""
+    from jdraw.images.prepare import Prepared
+
+    x_height = 80.0
+    humps = [
+        (20 + x, 150 - x_height * abs(np.sin(np.pi * x / 60))) for x in np.arange(0, 1200, 2.0)
+    ]
+    word = prepare(drawn(humps, shape=(200, 1240)))
+    monkeypatch.setattr(layout, "choose_scale", lambda prep, min_gap: (0.8, False))
+    free = layout.JOINED_CORE / x_height  # about the scale that makes the core JOINED_CORE
+    monkeypatch.setattr(Prepared, "gap", property(lambda self: layout.SEPARATE / (2 * free)))
+    scale, _, _ = layout.layout(word)
+    assert np.isclose(scale, 2 * free)  # held at the lines' floor, twice as large
+    monkeypatch.setattr(Prepared, "gap", property(lambda self: layout.SEPARATE / (0.5 * free)))
+    scale, _, _ = layout.layout(word)
+    assert abs(scale - free) <= 0.1 * free  # the floor is below: shrunk as far as the core asks

@@ -41,6 +41,9 @@ MIN_GAP = 4.0
 # the median x-height of the cursive fragments the planner learned joined-up writing from
 # (jdraw.data.cursive.fragments: 16 to 41 px, 5th to 95th percentile, median 24.7).
 JOINED_CORE = 25.0
+# Canvas pixels that separate lines come at least when joined-up writing is drawn smaller
+# (by the drawing's line gap): one blank pixel between two 1-pixel lines.
+SEPARATE = 2.0
 
 
 @dataclasses.dataclass(frozen=True)
@@ -163,6 +166,9 @@ def joined_scale(labels: np.ndarray, stats: np.ndarray, min_gap: float = MIN_GAP
     lines' core (:func:`line_cores`, each joined piece's counted by its pixels, the
     median) is higher than :data:`JOINED_CORE` times ``min_gap / MIN_GAP``, the factor
     that makes it that high. A larger ``min_gap`` draws everything larger, this too.
+    :func:`layout` shrinks no further than keeps the drawing's separate lines
+    :data:`SEPARATE` pixels apart (its line gap), so that a long line drawing taken for
+    such writing (a skyline) keeps its detail.
     """
     if len(stats) < 2:
         return 1.0
@@ -279,8 +285,8 @@ def layout(
 
     n, labels, stats, _ = draw(scale)
     smaller = joined_scale(labels, stats, min_gap)
-    if smaller < 1.0:
-        scale *= smaller
+    if smaller < 1.0:  # but its separate lines keep a blank pixel between them
+        scale = max(scale * smaller, min(scale, SEPARATE / prep.gap))
         n, labels, stats, _ = draw(scale)
     whole = CanvasTransform(scale)
     boxes = []

@@ -1,6 +1,6 @@
 """Which of the writer's cursive strokes the plan draws as strokes of their own.
 
-  python bench/cursive_marks.py [--split val] [--n 40] [--checkpoint BUNDLE]
+  python bench/cursive_marks.py [--split val] [--n 40] [--checkpoint BUNDLE] [--traced]
 
 Plans the first ``--n`` words of a split as :mod:`jdraw.evaluation.words` draws them
 (100-300 px high, a 3-px marker) with ``plan_image``, and sorts the writer's strokes:
@@ -14,7 +14,10 @@ Plans the first ``--n`` words of a split as :mod:`jdraw.evaluation.words` draws 
 For each kind it prints how many there are, their mean best IoU with a planned stroke
 (:func:`jdraw.evaluation.metrics.stroke_iou`, the dev set's 2-px tolerance) and the
 share matched by one (IoU >= 0.5); a cross drawn as part of the word's line has no
-planned stroke of its own and matches none. About 20 s for 40 words on the 2-core CPU.
+planned stroke of its own and matches none. ``--traced`` plans with
+``plan_image(split=False)``: the strokes as traced and stitched, before the splitter's
+cuts and joins, to tell which stage drew a cross into the line. About 20 s for 40 words
+on the 2-core CPU.
 """
 
 from __future__ import annotations
@@ -51,17 +54,27 @@ def main() -> None:
     ap.add_argument("--split", default="val", choices=("train", "val", "test"))
     ap.add_argument("--n", type=int, default=40)
     ap.add_argument("--checkpoint", default=None)
+    ap.add_argument("--traced", action="store_true", help="no splitter: strokes as traced")
     a = ap.parse_args()
     best: dict[str, list[float]] = {"body": [], "cross": [], "dot": []}
     for w in cursive.split_words(a.split)[: a.n]:
         img, written = W.render_word(w, W.word_height(w))
-        plan = plan_image(img, polarity="dark", progress=False, checkpoint=a.checkpoint)
+        plan = plan_image(
+            img,
+            polarity="dark",
+            progress=False,
+            checkpoint=a.checkpoint,
+            split=False if a.traced else None,
+        )
         t = W.stroke_images(written, img.shape)
         d = W.stroke_images(plan.strokes, img.shape)
         iou = metrics.stroke_iou(d, t, W.TOL).max(0) if len(d) else np.zeros(len(t))
         for kind, b in zip(kinds(written, img.shape), iou):
             best[kind].append(float(b))
-    print(f"| the writer's strokes ({a.split}, {a.n} words) | n | mean best IoU | matched |")
+    stage = "as traced" if a.traced else "planned"
+    print(
+        f"| the writer's strokes ({a.split}, {a.n} words, {stage}) | n | mean best IoU | matched |"
+    )
     print("| --- | ---: | ---: | ---: |")
     for kind, v in best.items():
         v = np.asarray(v)

@@ -5,7 +5,7 @@
 Takes the first ``--n`` training fragments of :func:`jdraw.data.cursive.fragments`
 that hold a t, traces them with the bundle's tracer and no splitter (``jdraw.plan(...,
 split=False)``), and builds the splitter's join examples from them as its trainer does
-(:func:`jdraw.train.splitter.examples`: cut at the true corners and at T's, every end
+(:func:`jdraw.train.splitter.join_examples`: cut at the true corners and at T's, every end
 pair up to the default's reach and retrace). A pair is a *cross* pair when either end
 lies on a writer's stroke shorter than a fifth of the fragment's longest (a t's cross;
 :func:`jdraw.planner.joins.end_owner`). For cross pairs and the others it prints how
@@ -23,8 +23,8 @@ import numpy as np
 import jdraw
 from jdraw.data import cursive
 from jdraw.data import demos as D
-from jdraw.planner import corners, joins, splits
-from jdraw.train.splitter import examples
+from jdraw.planner import joins, splits
+from jdraw.train.splitter import join_examples
 
 SHORT = 0.2  # of the fragment's longest stroke: a shorter one is a mark
 
@@ -52,25 +52,12 @@ def main() -> None:
         refs = [np.asarray(r, np.float64) for r in d.strokes]
         length = np.array([np.linalg.norm(np.diff(r, axis=0), axis=1).sum() for r in refs])
         marks = set(np.flatnonzero(length < SHORT * length.max()).tolist())
-        _, _, xj, yj, _, cj = examples(s, refs, d.target, None, reach, retrace, sp.t_cuts)
+        _, _, _, cut, pairs, xj, yj = join_examples(
+            s, refs, d.target, None, reach, retrace, sp.t_cuts
+        )
         if not len(xj):
             continue
-        x = np.concatenate([xj, cj], 1) if sp.context else xj
-        z = splits._score(splits._join_logits, sp, x)
-        # The pairs in the order examples() made them: its cuts, then all_pairs.
-        strokes = [np.asarray(p, np.float64).reshape(-1, 2) for p in s if len(p)]
-        keys, _ = splits.all_corners(strokes, None)
-        by: dict[int, list[int]] = {}
-        for b, k in keys:
-            by.setdefault(b, []).append(k)
-        cut = []
-        for b, p in enumerate(strokes):
-            at = np.asarray(by.get(b, []), np.int64)
-            lab = corners.corner_labels(p, at, refs) if len(at) else np.zeros(0, bool)
-            cut += corners.split_at(p, at[lab]) if lab.any() else [p]
-        if sp.t_cuts:
-            cut = corners.t_cuts(cut)
-        pairs, _ = splits.all_pairs(cut, d.target, None, reach=reach, retrace=retrace)
+        z = splits._score(splits._join_logits, sp, splits.drawing_rows(xj, cut, sp.context))
         for (i, ie, j, je), y, zz in zip(pairs, yj, z):
             owners = {joins.end_owner(cut[i], ie, refs), joins.end_owner(cut[j], je, refs)}
             rows["cross" if owners & marks else "other"].append((float(y), float(zz)))

@@ -24,6 +24,7 @@ import argparse
 import cv2
 import numpy as np
 
+from jdraw.evaluation import words
 from jdraw.tiling import layout
 from jdraw.tiling.plan_image import plan_image
 
@@ -49,15 +50,6 @@ def skyline(seed: int) -> tuple[np.ndarray, list[np.ndarray]]:
     for p in strokes:
         cv2.polylines(img, [np.round(p).astype(np.int32)], False, 0, PEN, cv2.LINE_AA)
     return img, strokes
-
-
-def lines(strokes, shape) -> np.ndarray:
-    out = np.zeros(shape, np.uint8)
-    for p in strokes:
-        cv2.polylines(
-            out, [np.round(np.asarray(p)).astype(np.int32).reshape(-1, 1, 2)], False, 1, 1
-        )
-    return out > 0
 
 
 def near(mask: np.ndarray) -> np.ndarray:
@@ -86,7 +78,8 @@ def main() -> None:
         for seed in range(a.seeds):
             img, true = skyline(seed)
             plan = plan_image(img, polarity="dark", progress=False)
-            ink, drawn = lines(true, img.shape), lines(plan.strokes, img.shape)
+            ink = words.stroke_images(true, img.shape).any(0)
+            drawn = words.stroke_images(plan.strokes, img.shape).any(0)
             rows.append(
                 (
                     plan.scale,

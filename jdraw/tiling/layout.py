@@ -154,31 +154,39 @@ def joined_pieces(labels: np.ndarray, stats: np.ndarray) -> np.ndarray:
     is narrower; a long flat piece (a dash, a kanji's one bar) may count, and being
     one straight line it has no strokes to join back over it.
     """
-    _, core = line_cores(labels, stats)
+    return _wide(stats, line_cores(labels, stats)[1])
+
+
+def _wide(stats: np.ndarray, core: np.ndarray) -> np.ndarray:
+    """``bool [n]``: pieces at least :data:`JOINED_WIDTH` times as wide as ``core`` is high."""
     return stats[1:, cv2.CC_STAT_WIDTH].astype(np.int64) >= JOINED_WIDTH * core
 
 
-def joined_scale(labels: np.ndarray, stats: np.ndarray, min_gap: float = MIN_GAP) -> float:
+def _most(stats: np.ndarray, joined: np.ndarray) -> bool:
+    """Whether the ``joined`` pieces hold most of the centreline pixels."""
+    area = stats[1:, cv2.CC_STAT_AREA]
+    return bool(area[joined].sum() * 2 > area.sum())
+
+
+def joined_scale(stats: np.ndarray, core: np.ndarray, min_gap: float = MIN_GAP) -> float:
     """How much smaller to draw mostly joined-up writing, so that its letters come out
     the size the planner learned them at (1.0: as they are).
 
-    Where most centreline pixels are joined-up writing (:func:`joined_pieces`) and its
-    lines' core (:func:`line_cores`, each joined piece's counted by its pixels, the
-    median) is higher than :data:`JOINED_CORE` times ``min_gap / MIN_GAP``, the factor
-    that makes it that high. A larger ``min_gap`` draws everything larger, this too.
+    ``stats``: ``cv2.connectedComponentsWithStats``' of the centrelines; ``core``: each
+    piece's line core (:func:`line_cores`). Where most centreline pixels are joined-up
+    writing (:func:`joined_pieces`) and its lines' core (each joined piece's counted by
+    its pixels, the median) is higher than :data:`JOINED_CORE` times
+    ``min_gap / MIN_GAP``, the factor that makes it that high. A larger ``min_gap``
+    draws everything larger, this too.
     :func:`layout` shrinks no further than keeps the drawing's separate lines
     :data:`SEPARATE` pixels apart (its line gap), so that a long line drawing taken for
     such writing (a skyline) keeps its detail.
     """
-    if len(stats) < 2:
-        return 1.0
-    _, core = line_cores(labels, stats)
-    joined = stats[1:, cv2.CC_STAT_WIDTH].astype(np.int64) >= JOINED_WIDTH * core
-    area = stats[1:, cv2.CC_STAT_AREA]
-    if area[joined].sum() * 2 <= area.sum():
+    joined = _wide(stats, core)
+    if not _most(stats, joined):
         return 1.0
     order = np.argsort(core[joined], kind="stable")
-    cum = np.cumsum(area[joined][order])
+    cum = np.cumsum(stats[1:, cv2.CC_STAT_AREA][joined][order])
     typical = core[joined][order][np.searchsorted(cum, 0.5 * cum[-1])]
     return min(1.0, JOINED_CORE * min_gap / MIN_GAP / typical)
 
@@ -284,16 +292,18 @@ def layout(
         return cv2.connectedComponentsWithStats(big.astype(np.uint8), connectivity=8)
 
     n, labels, stats, _ = draw(scale)
-    smaller = joined_scale(labels, stats, min_gap)
+    _, core = line_cores(labels, stats)
+    smaller = joined_scale(stats, core, min_gap)
     if smaller < 1.0:  # but its separate lines keep a blank pixel between them
         scale = max(scale * smaller, min(scale, SEPARATE / prep.gap))
         n, labels, stats, _ = draw(scale)
+        _, core = line_cores(labels, stats)
     whole = CanvasTransform(scale)
     boxes = []
     for k in range(1, n):
         x, y, bw, bh = stats[k, :4]
         boxes.append(tuple(whole.to_input([[x, y], [x + bw - 1, y + bh - 1]]).ravel()))
-    joined = joined_pieces(labels, stats)
+    joined = _wide(stats, core)
     tiles: list[Tile] = []
     regions = []
     for r, i in enumerate(_reading_order(boxes, rtl)):
@@ -353,10 +363,7 @@ def mostly_joined(lines: np.ndarray) -> bool:
     n, labels, stats, _ = cv2.connectedComponentsWithStats(
         np.asarray(lines, np.uint8), connectivity=8
     )
-    if n < 2:
-        return False
-    area = stats[1:, cv2.CC_STAT_AREA]
-    return bool(area[joined_pieces(labels, stats)].sum() * 2 > area.sum())
+    return n >= 2 and _most(stats, joined_pieces(labels, stats))
 
 
 def _crop(img: np.ndarray, ox: int, oy: int) -> np.ndarray:

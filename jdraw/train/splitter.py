@@ -60,6 +60,27 @@ def examples(
           meets their line (:func:`jdraw.planner.corners.t_cuts`), as a splitter that
           learned them does in ``join_many``.
     """
+    strokes, xs, ys, cut, pairs, xj, yj = join_examples(
+        traced, refs, ink, drawn, reach, retrace, t_cuts
+    )
+    ctx = lambda rows, s: splits.drawing_rows(rows[:, :0], s)
+    return xs, ys, xj, yj, ctx(xs, strokes), ctx(xj, cut)
+
+
+def join_examples(
+    traced,
+    refs,
+    ink,
+    drawn=None,
+    reach: int = joins.REACH,
+    retrace: int = 0,
+    t_cuts: bool = False,
+):
+    """:func:`examples` with the strokes and pairs they are of, not the context:
+    ``(strokes, xs, ys, cut, pairs, xj, yj)``: the traced strokes, their corners'
+    features and labels, the strokes cut at the true corners (and T's), their end
+    pairs (``(i, i_at_end, j, j_at_end)`` into ``cut``), the pairs' features and labels.
+    """
     strokes = [np.asarray(s, np.float64).reshape(-1, 2) for s in traced if len(s)]
     keys, xs = splits.all_corners(strokes, drawn)  # grouped by stroke, in stroke order
     by_stroke: dict[int, list[int]] = {}
@@ -83,14 +104,14 @@ def examples(
         else joins.end_owner(cut[i], ie, refs) == joins.end_owner(cut[j], je, refs)
         for i, ie, j, je in pairs
     ]
-    ctx = lambda rows, s: splits.drawing_rows(rows[:, :0], s)
     return (
+        strokes,
         xs,
         np.asarray(ys, np.float32),
+        cut,
+        pairs,
         xj,
         np.asarray(yj, np.float32),
-        ctx(xs, strokes),
-        ctx(xj, cut),
     )
 
 

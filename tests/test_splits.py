@@ -317,6 +317,45 @@ def test_join_shares_decide_which_pairs_a_batch_draws():
     assert (np.asarray(drawn.join_net(x)) > 0).mean() > 0.9  # never saw a non-join
 
 
+def test_negative_weights_tip_pairs_the_net_cannot_tell_apart():
+    """Three joins to each non-join, all alike: the plain net says "join"; with the
+    non-joins weighing 9 each they outweigh the joins and it says "do not"."""
+    rng = np.random.default_rng(0)
+    xs = rng.normal(size=(64, splits.CORNER_FEATURES)).astype(np.float32)
+    xj = 0.05 * rng.normal(size=(400, splits.JOIN_FEATURES)).astype(np.float32)  # alike
+    yj = (np.arange(400) % 4 != 0).astype(np.float32)
+    groups = np.where(np.arange(400) < 200, "cursive", "kanji")
+    w = splitter_train.negative_weights(groups, yj, {"cursive": 4.0})
+    assert sorted(set(w.tolist())) == [1.0, 4.0]
+    assert (w == 4.0).sum() == ((groups == "cursive") & (yj == 0)).sum()
+    data = (xs, (xs[:, 0] > 0).astype(np.float32), xj, yj)
+    kw = dict(steps=150, batch=64, hidden=8, patches=False)
+    x = xj[:, : splits.join_width(False, joins.REACH)]
+    plain, _ = splitter_train.fit(data, **kw)
+    weighted, _ = splitter_train.fit(
+        data,
+        join_weight=splitter_train.negative_weights(np.full(400, "cursive"), yj, {"cursive": 9.0}),
+        **kw,
+    )
+    assert (np.asarray(plain.join_net(x)) > 0).mean() > 0.9
+    assert (np.asarray(weighted.join_net(x)) < 0).mean() > 0.9
+    with pytest.raises(ValueError, match="must be > 0"):
+        splitter_train.negative_weights(groups, yj, {"cursive": 0.0})
+
+
+def test_cross_weight_variant_is_the_default_with_cursive_non_joins_weighed(tmp_path):
+    from configs import default
+
+    base, c = default.get_config().to_dict(), default.get_config("cross_weight").to_dict()
+    assert c["stages"]["splitter"].pop("join_negatives") == {"cursive": 4.0}
+    assert c["stages"] == base["stages"]
+    cfg = default.get_config("cross_weight").stages.splitter
+    cfg.join_negatives = {"hebrew": 2.0}  # a set the stage does not trace
+    with pytest.raises(ValueError, match="not trained on.*hebrew"):
+        splitter_train.train(cfg, tmp_path, progress=False)
+    assert not (tmp_path / "examples").exists()  # refused before any tracing
+
+
 def test_plan_refuses_split_without_a_splitter():
     from jdraw.planner import plan as api
 

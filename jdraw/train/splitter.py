@@ -173,6 +173,7 @@ def fit(
     context: bool = False,
     retrace: int = 0,
     join_draw=None,
+    join_weight=None,
 ):
     """Fits a :class:`jdraw.planner.splits.Splitter` on stacked :func:`examples`.
 
@@ -182,7 +183,8 @@ def fit(
     ``retrace``: the one the examples were made with (kept in the splitter);
     ``join_draw``: ``(groups [J] int, p [G] float)``, each end pair's set and each
     set's share of a batch's pairs (:func:`jdraw.train.ranker.shares_of`); ``None``:
-    pairs drawn uniformly, as corners always are.
+    pairs drawn uniformly, as corners always are; ``join_weight``: ``[J]`` float, what
+    each end pair weighs in the join loss (:func:`negative_weights`); ``None``: 1 each.
     """
     xs, ys, xj, yj = data[:4]
     if not patches:
@@ -197,17 +199,22 @@ def fit(
     graphdef, params = nnx.split(model, nnx.Param)
     opt = tx.init(params)
 
-    def loss_fn(params, a, la, b, lb):
+    wj = (
+        np.ones(len(xj), np.float32) if join_weight is None else np.asarray(join_weight, np.float32)
+    )
+
+    def loss_fn(params, a, la, b, lb, wb):
         m = nnx.merge(graphdef, params)
         za, zb = m.split_net(a), m.join_net(b)
-        loss = jnp.mean(optax.sigmoid_binary_cross_entropy(za, la)) + jnp.mean(
-            optax.sigmoid_binary_cross_entropy(zb, lb)
-        )
+        jl = optax.sigmoid_binary_cross_entropy(zb, lb)
+        loss = jnp.mean(optax.sigmoid_binary_cross_entropy(za, la)) + jnp.sum(
+            wb * jl
+        ) / jnp.maximum(jnp.sum(wb), 1e-6)
         return loss, (jnp.mean((za > 0) == (la > 0.5)), jnp.mean((zb > 0) == (lb > 0.5)))
 
     @jax.jit
-    def step(params, opt, a, la, b, lb):
-        (loss, accs), g = jax.value_and_grad(loss_fn, has_aux=True)(params, a, la, b, lb)
+    def step(params, opt, a, la, b, lb, wb):
+        (loss, accs), g = jax.value_and_grad(loss_fn, has_aux=True)(params, a, la, b, lb, wb)
         upd, opt = tx.update(g, opt, params)
         return optax.apply_updates(params, upd), opt, loss, accs
 
@@ -222,7 +229,7 @@ def fit(
         else:
             counts = rng.multinomial(batch, join_draw[1])
             j = np.concatenate([m[rng.integers(len(m), size=c)] for m, c in zip(members, counts)])
-        params, opt, loss, accs = step(params, opt, xs[i], ys[i], xj[j], yj[j])
+        params, opt, loss, accs = step(params, opt, xs[i], ys[i], xj[j], yj[j], wj[j])
         if s % 500 == 0 or s == steps - 1:
             logs.append(
                 {
@@ -236,7 +243,24 @@ def fit(
     return model, logs
 
 
-def fit_members(data, cfg, join_draw=None):
+def negative_weights(groups: np.ndarray, labels: np.ndarray, weights) -> np.ndarray:
+    """``float32 [J]``: what each end pair weighs in the join loss. A pair labelled "do
+    not join" (``labels`` 0) from a set that ``weights`` names (``groups``: each pair's
+    set) weighs that set's number; every other pair 1.
+
+    In joined-up writing nearly every pair the trainer offers is "join", and the few that
+    are not (a t's or an x's cross and the line it crosses) are what the net must learn
+    not to take: weighing them more makes missing one cost as much as missing several joins.
+    """
+    w = np.ones(len(labels), np.float32)
+    for name, v in dict(weights or {}).items():
+        if float(v) <= 0:
+            raise ValueError(f"join_negatives[{name!r}] = {v}: a weight must be > 0")
+        w[(np.asarray(groups) == name) & (np.asarray(labels) < 0.5)] = float(v)
+    return w
+
+
+def fit_members(data, cfg, join_draw=None, join_weight=None):
     """``(splitter, logs)``: :func:`fit` with ``cfg``'s settings, ``cfg.members`` times.
 
     Member ``k`` is fitted with seed ``cfg.seed + k``; more than one are returned as
@@ -257,6 +281,7 @@ def fit_members(data, cfg, join_draw=None):
             context=bool(cfg.get("context", False)),
             retrace=int(cfg.get("retrace", 0)),
             join_draw=join_draw,
+            join_weight=join_weight,
         )
 
     return seed_members(cfg, fit_one, splits.ensemble)
@@ -328,21 +353,31 @@ def train(cfg, workdir, progress: bool = True) -> dict:
 
     With ``cfg.members`` = k > 1, k splitters are fitted on the same examples (seeds
     ``cfg.seed`` to ``cfg.seed + k - 1``) and written as one, their mean
-    (:func:`jdraw.planner.splits.ensemble`).
+    (:func:`jdraw.planner.splits.ensemble`). ``cfg.join_negatives`` (``{set: weight}``):
+    what a "do not join" end pair of each named set weighs in the join loss
+    (:func:`negative_weights`).
     """
     workdir = pathlib.Path(workdir)
     workdir.mkdir(parents=True, exist_ok=True)
+    negatives = dict(cfg.get("join_negatives", None) or {})
+    unknown = set(negatives) - {name for name, _, _ in chunk_jobs(cfg)} if negatives else ()
+    if unknown:  # before the tracing, not after it
+        raise ValueError(f"join_negatives names sets not trained on: {sorted(unknown)}")
     (workdir / "config.json").write_text(cfg.to_json_best_effort(indent=2) + "\n")
     t0 = time.time()
     paths = make_examples(cfg, workdir, progress=progress)
     t1 = time.time()
     context = bool(cfg.get("context", False))
     data = load_examples(paths, context)
-    draw = None
-    if cfg.get("join_shares", None):
+    draw = weight = None
+    if cfg.get("join_shares", None) or negatives:
         names = [name for name, _, _ in chunk_jobs(cfg)]
-        draw = shares_of(set_groups(paths, names)[1], dict(cfg.join_shares), known=names)
-    model, logs = fit_members(data, cfg, draw)
+        groups = set_groups(paths, names)[1]
+        if cfg.get("join_shares", None):
+            draw = shares_of(groups, dict(cfg.join_shares), known=names)
+        if negatives:
+            weight = negative_weights(groups, data[3], negatives)
+    model, logs = fit_members(data, cfg, draw, weight)
     t2 = time.time()
     result = {
         "corners": int(len(data[0])),

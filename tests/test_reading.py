@@ -101,6 +101,38 @@ def test_reading_order_right_to_left_with_marks_after_their_body():
     assert layout._reading_order(boxes, rtl=True) == [0, 6, 2, 3, 5, 4, 1]
 
 
+def _canvas_word():
+    """Two letter bodies (right: x 60-90, left: x 10-40, each an L 20 px tall) and a dot
+    over the right one's right end; strokes as polylines on the canvas."""
+    img = np.zeros((100, 100), bool)
+    right_a = np.array([[90.0, 30], [90, 50], [75, 50]])  # the right body's right part
+    right_b = np.array([[75.0, 50], [60, 50]])  # and its left part
+    left = np.array([[40.0, 30], [40, 50], [10, 50]])
+    for p in (right_a, right_b, left):
+        for (x0, y0), (x1, y1) in zip(p[:-1], p[1:]):
+            img[
+                int(min(y0, y1)) : int(max(y0, y1)) + 1, int(min(x0, x1)) : int(max(x0, x1)) + 1
+            ] = 1
+    img[22:24, 84:86] = 1  # the dot
+    dot = np.array([[84.0, 22], [85, 23]])
+    return img, right_a, right_b, left, dot
+
+
+def test_a_mark_is_drawn_right_after_its_letter_not_after_the_next_piece():
+    from jdraw.tiling.marks import marks_after_bodies
+
+    img, right_a, right_b, left, dot = _canvas_word()
+    right = np.concatenate([right_a, right_b[1:]])
+    # the ranker's order: right body, left body, then the dot (a cursive word's marks last)
+    assert marks_after_bodies(img, [right, left, dot]) == [0, 2, 1]
+    # a body in two strokes: the dot follows the stroke that passes nearest it
+    assert marks_after_bodies(img, [right_a, right_b, left, dot]) == [0, 3, 1, 2]
+    assert marks_after_bodies(img, [dot, right_a, right_b, left]) == [1, 0, 2, 3]
+    # already in place, or nothing but bodies: the order stays
+    assert marks_after_bodies(img, [right_a, dot, right_b, left]) == [0, 1, 2, 3]
+    assert marks_after_bodies(img & (np.arange(100) < 80)[None], [left, right_b]) == [0, 1]
+
+
 def test_wide_region_tiles_go_right_to_left():
     t = np.linspace(0, 1, 400)
     line = np.stack([40 + 900 * t, 150 + 100 * np.sin(7 * np.pi * t)], 1)

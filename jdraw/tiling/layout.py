@@ -225,6 +225,23 @@ def text_lines(
     return np.argmin(gap, axis=1), [(float(a), float(c)) for a, c in lines]
 
 
+def mark_bodies(b: np.ndarray, tall: np.ndarray, line_of=None) -> dict[int, int]:
+    """``{mark: body}``: for each mark of boxes ``b [n, 4]`` (not ``tall``), the letter
+    body of its text line (``line_of``; ``None``: one line) spanning its centre's x
+    that lies nearest it in y; marks that no body spans are left out."""
+    line_of = np.zeros(len(b), int) if line_of is None else np.asarray(line_of)
+    cx, cy = (b[:, 0] + b[:, 2]) / 2, (b[:, 1] + b[:, 3]) / 2
+    body_of: dict[int, int] = {}
+    for i in np.flatnonzero(~tall):
+        over = np.flatnonzero(
+            tall & (line_of == line_of[i]) & (b[:, 0] <= cx[i]) & (cx[i] <= b[:, 2])
+        )
+        if len(over):
+            dy = np.maximum(b[over, 1] - cy[i], cy[i] - b[over, 3])
+            body_of[int(i)] = int(over[np.argmin(dy)])
+    return body_of
+
+
 def _reading_order(
     boxes: Sequence[tuple[float, float, float, float]], rtl: bool = False
 ) -> list[int]:
@@ -244,14 +261,7 @@ def _reading_order(
     centre_x = (b[:, 0] + b[:, 2]) / 2
     centre_y = (b[:, 1] + b[:, 3]) / 2
     sign = -1.0 if rtl else 1.0
-    body_of: dict[int, int] = {}
-    for i in np.flatnonzero(~tall):
-        over = np.flatnonzero(
-            tall & (line_of == line_of[i]) & (b[:, 0] <= centre_x[i]) & (centre_x[i] <= b[:, 2])
-        )
-        if len(over):
-            dy = np.maximum(b[over, 1] - centre_y[i], centre_y[i] - b[over, 3])
-            body_of[int(i)] = int(over[np.argmin(dy)])
+    body_of = mark_bodies(b, tall, line_of)
     heads = [i for i in range(len(b)) if i not in body_of]
     heads.sort(key=lambda i: (line_of[i], sign * centre_x[i], centre_y[i]))
     order = []

@@ -21,6 +21,7 @@ from jdraw.images.load import check_pixels, load_image
 from jdraw.images.prepare import Prepared, prepare
 from jdraw.images.skeleton import simplify, skeleton_polylines
 from jdraw.tiling.layout import Tile, choose_scale, layout
+from jdraw.tiling.marks import marks_after_bodies
 from jdraw.tiling.stitch import stitch
 
 CANVAS = geometry.CANVAS
@@ -322,7 +323,10 @@ def _finish(job: _Job, simplify_tol: float, join_lifts: bool) -> ImagePlan:
         idx = [i for i, t in enumerate(tiles) if t.region == r]
         if job.single:
             t = tiles[idx[0]]
-            region_strokes = [t.transform.to_input(np.floor(p + 0.5)) for p in planned[idx[0]]]
+            drawn = planned[idx[0]]
+            if job.direction == "rtl":
+                drawn = [drawn[k] for k in marks_after_bodies(t.image, drawn)]
+            region_strokes = [t.transform.to_input(np.floor(p + 0.5)) for p in drawn]
         else:
             # Pieces in the frame of the whole-drawing canvas, where tiles abut.
             base = CanvasTransform(scale)

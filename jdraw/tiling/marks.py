@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
-from scipy import ndimage
 
 from jdraw.tiling.layout import mark_bodies, tall_boxes
+
+NEAR = 3  # px: a stroke's points this far off the ink still count for the piece beside them
 
 
 def marks_after_bodies(image: np.ndarray, strokes, rtl: bool = True) -> list[int]:
@@ -25,13 +26,15 @@ def marks_after_bodies(image: np.ndarray, strokes, rtl: bool = True) -> list[int
     right after the stroke of its body that passes nearest it (its letter), the
     marks after one stroke right to left, and keeps the planner's order
     otherwise. A stroke belongs to the piece of ink (8-connected, of ``image``)
-    that most of its points lie on or nearest to; a mark's body is the letter
+    that most of its points lie on or beside (:data:`NEAR`); a mark's body is the letter
     body spanning its centre's x that lies nearest it in y.
     """
     n, labels, stats, _ = cv2.connectedComponentsWithStats(image.astype(np.uint8), connectivity=8)
     if n <= 2 or not strokes:
         return list(range(len(strokes)))
-    near = labels[tuple(ndimage.distance_transform_edt(labels == 0, return_indices=True)[1])]
+    # points a few pixels off the ink count for the piece beside them
+    grown = cv2.dilate(labels.astype(np.uint16), np.ones((3, 3), np.uint8), iterations=NEAR)
+    near = np.where(labels > 0, labels, grown)
     b = np.array([(x, y, x + w - 1, y + h - 1) for x, y, w, h, _ in stats[1:]], np.float64)
     body_of = mark_bodies(b, tall_boxes(b))
     cx, cy = (b[:, 0] + b[:, 2]) / 2, (b[:, 1] + b[:, 3]) / 2
@@ -40,6 +43,7 @@ def marks_after_bodies(image: np.ndarray, strokes, rtl: bool = True) -> list[int
     for p in strokes:
         q = np.floor(np.asarray(p, np.float64).reshape(-1, 2) + 0.5).astype(int)
         got = near[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)]
+        got = got[got > 0]
         piece.append(int(np.bincount(got).argmax()) - 1 if len(got) else -1)
     anchor = {}  # mark piece -> the stroke of its body that passes nearest it
     for m, body in body_of.items():

@@ -24,10 +24,9 @@ context: the default); ``words128`` adds 1,000 printed Latin words
 default); ``wcur30`` gives cursive 30%, ``wcur30w`` printed words 10% more;
 ``pfx`` adds 400 cursive fragments stopped part-way through their writing
 (:func:`jdraw.data.cursive.prefixes`) with 15% of the headings, ``pfxh`` splits
-cursive's 15% between them; ``rows128`` adds 400 rows of short cursive words, each
-dotted and crossed before the next (:func:`jdraw.data.cursive_rows.rows`).
-``--ensembles 2,3`` also scores each fit's first 2 and 3 seeds' rankers as one
-(:func:`jdraw.planner.ranker.ensemble`, as the default's ``members``).
+cursive's 15% between them. ``--ensembles 2,3`` also scores each fit's first 2 and 3
+seeds' rankers as one (:func:`jdraw.planner.ranker.ensemble`, as the default's
+``members``).
 
 ``--arabic N``: also plan our Arabic words (``bench/rtl_words.py``, N words a
 font, the right-to-left hint) with each ranker in a copy of the default bundle,
@@ -82,10 +81,8 @@ FITS = {  # name: (sets, hidden, context, heading shares)
         True,
         {"cursive": 0.075, "cursive_prefix": 0.075, "latin": 0.1},
     ),
-    "rows128": ((*MIX, "latin_words", "cursive_rows"), 128, True, HEADS),
 }
 PREFIX_CHARS = 400  # fragments stopped part-way (jdraw.data.cursive.prefixes), where a fit asks
-ROWS_CHARS = 400  # rows of short cursive words (jdraw.data.cursive_rows.rows), where a fit asks
 
 
 def arabic(model, work: pathlib.Path, words: int, tag: str, fonts: str = "eval") -> list:
@@ -130,7 +127,6 @@ def main(argv=None) -> None:
     p.add_argument("--splits", default="val", help="KanjiVG splits to score (val, test)")
     p.add_argument("--arabic", type=int, default=0, help="Arabic words per font (0: none)")
     p.add_argument("--arabic-fonts", default="eval", choices=("eval", "val"))
-    p.add_argument("--rows", type=int, default=ROWS_CHARS, help="cursive rows, where a fit asks")
     p.add_argument(
         "--ensembles", default="", help="also score the first k seeds' rankers as one, e.g. 2,3"
     )
@@ -140,8 +136,6 @@ def main(argv=None) -> None:
     cfg.tracer, cfg.out = str(bundle.DEFAULT_BUNDLE), str(work / "out")
     if any("cursive_prefix" in FITS[f][0] for f in a.fits.split(",")):
         cfg.extra = {**cfg.extra.to_dict(), "cursive_prefix": PREFIX_CHARS}
-    if any("cursive_rows" in FITS[f][0] for f in a.fits.split(",")):
-        cfg.extra = {**cfg.extra.to_dict(), "cursive_rows": a.rows}
     paths = ranker_train.make_examples(cfg, work)
     names = [j[0] for j in ranker_train.chunk_jobs(cfg)]
     groups = ranker_train.set_groups(paths, names)[0]

@@ -187,33 +187,3 @@ def test_prefixes_are_a_training_set_by_name():
     ks, pool = mix.load("cursive_prefix", progress=False)
     assert len(pool) == len(ks) == 2000 and ks.keep_turns
     assert {cursive.split_of(str(n).split("[")[0]) for n in ks.names} == {"train"}
-
-
-def test_rows_finish_each_word_with_its_marks_before_the_next():
-    from jdraw.data import cursive_rows
-
-    ks = cursive_rows.rows("val", n=30, seed=1)
-    assert len(ks) == 30 and ks.keep_turns
-    val = cursive.split_words("val")
-    for i in range(len(ks)):
-        pieces = str(ks.names[i]).split("|")
-        assert 2 <= len(pieces) <= 3 and all(any(p in w for w in val) for p in pieces)
-        assert any(ch in cursive.MARKS for p in pieces[:-1] for ch in p)
-        sizes = [sum(len(q) > 1 for q in cursive.word_strokes(p)) for p in pieces]
-        strokes = [np.asarray(c).reshape(-1, 2) for c in ks.strokes(i)]
-        assert len(strokes) == sum(sizes)
-        groups = np.split(np.arange(len(strokes)), np.cumsum(sizes)[:-1])
-        # each piece (body and marks) lies wholly left of the next: written before it
-        for a, b in zip(groups, groups[1:]):
-            assert max(strokes[k][:, 0].max() for k in a) < min(strokes[k][:, 0].min() for k in b)
-        pts = np.concatenate(strokes)
-        assert pts.min() >= cursive.MARGIN - 1e-3 and pts.max() <= 99 - cursive.MARGIN + 1e-3
-
-
-def test_rows_are_a_training_set_by_name():
-    from jdraw.data import mix
-
-    ks, pool = mix.load("cursive_rows", progress=False)
-    assert len(pool) == len(ks) == 400 and ks.keep_turns
-    train = cursive.split_words("train")
-    assert all(any(p in w for w in train) for n in ks.names for p in str(n).split("|"))

@@ -4,12 +4,11 @@ For the tracer-trained parts (splitter, ranker), a config's ``extra`` maps a
 set's name to how many augmented examples of it to trace beside the KanjiVG
 characters, e.g. ``{"latin": 1500}`` (``latin_words``: rows of Latin glyphs,
 :func:`jdraw.data.latin.words`; ``cursive_prefix``: cursive fragments written only
-part-way, :func:`jdraw.data.cursive.prefixes`; ``cursive_rows``: rows of short cursive
-words, each dotted and crossed before the next, :func:`jdraw.data.cursive_rows.rows`).
-For the model stages (local and start models), ``data.extra`` maps a set's name
-to the share of characters drawn from it (:class:`Mixture`; KanjiVG takes the
-rest). Each set is a :class:`jdraw.data.kanji.KanjiSet` with the pool of indices
-to draw from, so every pipeline that takes KanjiVG takes it unchanged.
+part-way, :func:`jdraw.data.cursive.prefixes`). For the model stages (local and start
+models), ``data.extra`` maps a set's name to the share of characters drawn
+from it (:class:`Mixture`; KanjiVG takes the rest). Each set is a
+:class:`jdraw.data.kanji.KanjiSet` with the pool of indices to draw from, so
+every pipeline that takes KanjiVG takes it unchanged.
 """
 
 from __future__ import annotations
@@ -47,11 +46,6 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
 
         ks = cursive.prefixes("train")
         return ks, np.arange(len(ks))
-    if name == "cursive_rows":
-        from jdraw.data import cursive_rows
-
-        ks = cursive_rows.rows("train")
-        return ks, np.arange(len(ks))
     if name == "scribble":
         from jdraw.data import scribbles
 
@@ -59,8 +53,7 @@ def load(name: str, progress: bool = True) -> tuple[KanjiSet, np.ndarray]:
         return ks, np.arange(len(ks))
     raise ValueError(
         f"unknown training set {name!r}; "
-        "expected 'kanji', 'latin', 'latin_words', 'cursive', 'cursive_prefix', "
-        "'cursive_rows' or 'scribble'"
+        "expected 'kanji', 'latin', 'latin_words', 'cursive', 'cursive_prefix' or 'scribble'"
     )
 
 

@@ -49,6 +49,27 @@ def drawing_scores(nets, fonts_by_script: dict, per_font: int, seed: int, cfg) -
     return out
 
 
+def score_row(val: dict, hel: dict, w: np.ndarray) -> dict:
+    """The threshold set as the trainer sets it on ``val`` scores weighted by ``w``, the
+    right-to-left validation drawings above it, and each held-out script's accuracy."""
+    v = {s: list(m @ w) for s, m in val.items()}
+    cut = training.choose_threshold(v, 0.0)
+    row = {"threshold": cut, "val_rtl_recall": training._recall(v, cut)}
+    for s, m in hel.items():
+        row[s] = float(np.mean((m @ w > cut) == (s in F.RTL_SCRIPTS))) if len(m) else 0.0
+    return row
+
+
+def print_rows(rows: dict, first: str, scripts: list) -> None:
+    """``rows`` (:func:`score_row`) as a markdown table, ``first`` naming its first column."""
+    print(f"| {first} | threshold | val: rtl read rtl | " + " | ".join(scripts) + " |")
+    print("| --- " * (3 + len(scripts)) + "|")
+    for name, row in rows.items():
+        cells = [f"{row[s]:.3f}" for s in scripts]
+        print(f"| {name} | {row['threshold']:.2f} | {row['val_rtl_recall']:.3f} | "
+              + " | ".join(cells) + " |")  # fmt: skip
+
+
 def main(argv=None) -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("detectors", nargs="+", help="folders of direction.json/.npz")
@@ -65,21 +86,8 @@ def main(argv=None) -> None:
     weights = {d: np.eye(len(nets))[i] for i, d in enumerate(a.detectors)}
     if len(nets) > 1:
         weights["mean of all"] = np.full(len(nets), 1.0 / len(nets))
-    rows = {}
-    for name, w in weights.items():
-        v = {s: list(m @ w) for s, m in val.items()}
-        cut = training.choose_threshold(v, 0.0)
-        row = {"threshold": cut, "val_rtl_recall": training._recall(v, cut)}
-        for s, m in hel.items():
-            row[s] = float(np.mean((m @ w > cut) == (s in F.RTL_SCRIPTS))) if len(m) else 0.0
-        rows[name] = row
-    scripts = list(hel)
-    print("| detector | threshold | val: rtl read rtl | " + " | ".join(scripts) + " |")
-    print("| --- " * (3 + len(scripts)) + "|")
-    for name, row in rows.items():
-        cells = [f"{row[s]:.3f}" for s in scripts]
-        print(f"| {name} | {row['threshold']:.2f} | {row['val_rtl_recall']:.3f} | "
-              + " | ".join(cells) + " |")  # fmt: skip
+    rows = {name: score_row(val, hel, w) for name, w in weights.items()}
+    print_rows(rows, "detector", list(hel))
     print(f"\n({time.perf_counter() - t0:.0f} s)")
     if a.out:
         with open(a.out, "w") as f:

@@ -25,12 +25,11 @@ import time
 import numpy as np
 
 import configs.reading_direction as cfg_module
-from jdraw.data import fonts as F
 from jdraw.images import reading
 from jdraw.train import reading as training
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from detector_average import drawing_scores  # noqa: E402 (bench/detector_average.py)
+from detector_average import drawing_scores, print_rows, score_row  # noqa: E402
 
 
 def main(argv=None) -> None:
@@ -48,21 +47,10 @@ def main(argv=None) -> None:
         reading.STRIDE = stride
         val = drawing_scores([net], val_fonts, cfg.val_words_per_font, 2, cfg)
         hel = drawing_scores([net], held, cfg.eval_words_per_font, 1, cfg)
-        v = {s: list(m[:, 0]) for s, m in val.items()}
-        cut = training.choose_threshold(v, 0.0)
-        row = {"threshold": cut, "val_rtl_recall": training._recall(v, cut)}
-        for s, m in hel.items():
-            row[s] = float(np.mean((m[:, 0] > cut) == (s in F.RTL_SCRIPTS))) if len(m) else 0.0
-        rows[stride] = row
+        rows[stride] = row = score_row(val, hel, np.ones(1))
         shown = {k: round(x, 3) for k, x in row.items()}
         print(f"stride {stride}: {json.dumps(shown)}", flush=True)
-    scripts = list(hel)
-    print("| stride | threshold | val: rtl read rtl | " + " | ".join(scripts) + " |")
-    print("| --- " * (3 + len(scripts)) + "|")
-    for stride, row in rows.items():
-        cells = [f"{row[s]:.3f}" for s in scripts]
-        print(f"| {stride} | {row['threshold']:.2f} | {row['val_rtl_recall']:.3f} | "
-              + " | ".join(cells) + " |")  # fmt: skip
+    print_rows(rows, "stride", list(hel))
     print(f"\n({time.perf_counter() - t0:.0f} s)")
     if a.out:
         pathlib.Path(a.out).write_text(json.dumps(rows, indent=1) + "\n")

@@ -25,7 +25,7 @@ import numpy as np
 from scipy.stats import spearmanr
 
 from jdraw.data import fonts as F
-from jdraw.tiling.layout import mark_bodies, tall_boxes
+from jdraw.tiling.layout import mark_bodies, piece_of, tall_boxes
 from jdraw.tiling.plan_image import plan_image
 
 
@@ -37,15 +37,6 @@ def bodies_of_marks(ink: np.ndarray) -> tuple[np.ndarray, dict[int, int]]:
         return labels, {}
     found = mark_bodies(b, tall_boxes(b))  # a word: one text line
     return labels, {m + 1: body + 1 for m, body in found.items()}
-
-
-def piece_of(stroke: np.ndarray, labels: np.ndarray) -> int:
-    """The piece (label) most of a stroke's points lie on; 0 for none."""
-    h, w = labels.shape
-    q = np.round(stroke).astype(int)
-    got = labels[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)]
-    got = got[got > 0]
-    return int(np.bincount(got).argmax()) if len(got) else 0
 
 
 def in_place(strokes, pieces: list[int], body_of: dict[int, int]) -> tuple[int, int]:

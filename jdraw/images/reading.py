@@ -97,15 +97,6 @@ def _components(prep: Prepared) -> tuple[np.ndarray, list[tuple[float, float, fl
     return labels, boxes
 
 
-def _component_of(points: np.ndarray, labels: np.ndarray) -> int:
-    """The component most of a polyline's vertices lie on (its ends may lie off the skeleton)."""
-    h, w = labels.shape
-    q = np.round(points).astype(int)
-    got = labels[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)]
-    got = got[got > 0]
-    return int(np.bincount(got).argmax()) if len(got) else 0
-
-
 def line_images(prep: Prepared, span: str = "tall") -> list[np.ndarray]:
     """Each text line's centrelines, drawn again ``WINDOW`` px high.
 
@@ -123,14 +114,14 @@ def line_images(prep: Prepared, span: str = "tall") -> list[np.ndarray]:
     """
     if span not in SPANS:
         raise ValueError(f"span must be one of {SPANS}, not {span!r}")
-    from jdraw.tiling.layout import text_lines
+    from jdraw.tiling.layout import piece_of, text_lines
 
     labels, boxes = _components(prep)
     if not boxes:
         return []
     line_of, spans = text_lines(boxes)
     b = np.asarray(boxes)
-    comp_of = [_component_of(p, labels) for p in prep.polylines]
+    comp_of = [piece_of(p, labels) for p in prep.polylines]
     out = []
     for k, (y0, y1) in enumerate(spans):
         members = np.flatnonzero(line_of == k)

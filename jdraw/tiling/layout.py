@@ -225,6 +225,16 @@ def text_lines(
     return np.argmin(gap, axis=1), [(float(a), float(c)) for a, c in lines]
 
 
+def piece_of(points: np.ndarray, labels: np.ndarray) -> int:
+    """The label most of a polyline's vertices lie on in ``labels [H, W]`` (0: background,
+    left out; its ends may lie off the ink); 0 if none lies on a piece."""
+    h, w = labels.shape
+    q = np.round(np.asarray(points, np.float64).reshape(-1, 2)).astype(int)
+    got = labels[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)]
+    got = got[got > 0]
+    return int(np.bincount(got).argmax()) if len(got) else 0
+
+
 def mark_bodies(b: np.ndarray, tall: np.ndarray, line_of=None) -> dict[int, int]:
     """``{mark: body}``: for each mark of boxes ``b [n, 4]`` (not ``tall``), the letter
     body of its text line (``line_of``; ``None``: one line) spanning its centre's x

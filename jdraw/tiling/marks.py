@@ -10,12 +10,12 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from jdraw.tiling.layout import mark_bodies, tall_boxes
+from jdraw.tiling.layout import mark_bodies, piece_of, tall_boxes
 
 NEAR = 3  # px: a stroke's points this far off the ink still count for the piece beside them
 
 
-def marks_after_bodies(image: np.ndarray, strokes, rtl: bool = True) -> list[int]:
+def marks_after_bodies(image: np.ndarray, strokes) -> list[int]:
     """The order of a canvas's ``strokes`` with each mark drawn right after its letter body.
 
     A drawing laid out in tiles is planned region by region, a mark (an i's dot,
@@ -26,40 +26,31 @@ def marks_after_bodies(image: np.ndarray, strokes, rtl: bool = True) -> list[int
     right after the stroke of its body that passes nearest it (its letter), the
     marks after one stroke right to left, and keeps the planner's order
     otherwise. A stroke belongs to the piece of ink (8-connected, of ``image``)
-    that most of its points lie on or beside (:data:`NEAR`); a mark's body is the letter
-    body spanning its centre's x that lies nearest it in y.
+    that most of its points lie on or beside (:data:`NEAR`); a mark's body is the
+    letter body spanning its centre's x that lies nearest it in y.
     """
     n, labels, stats, _ = cv2.connectedComponentsWithStats(image.astype(np.uint8), connectivity=8)
     if n <= 2 or not strokes:
         return list(range(len(strokes)))
-    # points a few pixels off the ink count for the piece beside them
     grown = cv2.dilate(labels.astype(np.uint16), np.ones((3, 3), np.uint8), iterations=NEAR)
     near = np.where(labels > 0, labels, grown)
+    piece = [piece_of(p, near) - 1 for p in strokes]  # -1: on no piece
     b = np.array([(x, y, x + w - 1, y + h - 1) for x, y, w, h, _ in stats[1:]], np.float64)
-    body_of = mark_bodies(b, tall_boxes(b))
     cx, cy = (b[:, 0] + b[:, 2]) / 2, (b[:, 1] + b[:, 3]) / 2
-    h, w = image.shape
-    piece = []
-    for p in strokes:
-        q = np.floor(np.asarray(p, np.float64).reshape(-1, 2) + 0.5).astype(int)
-        got = near[np.clip(q[:, 1], 0, h - 1), np.clip(q[:, 0], 0, w - 1)]
-        got = got[got > 0]
-        piece.append(int(np.bincount(got).argmax()) - 1 if len(got) else -1)
-    anchor = {}  # mark piece -> the stroke of its body that passes nearest it
-    for m, body in body_of.items():
+    after: dict[int, list[int]] = {}  # stroke -> the marks that follow it
+    for m, body in mark_bodies(b, tall_boxes(b)).items():
         own = [k for k, pc in enumerate(piece) if pc == body]
         if own:
-            c = np.array([cx[m], cy[m]])
-            gap = [np.abs(np.asarray(strokes[k]).reshape(-1, 2) - c).sum(1).min() for k in own]
-            anchor[m] = own[int(np.argmin(gap))]
-    sign = -1.0 if rtl else 1.0
+            gap = [
+                np.abs(np.reshape(strokes[k], (-1, 2)) - (cx[m], cy[m])).sum(1).min() for k in own
+            ]
+            after.setdefault(own[int(np.argmin(gap))], []).append(m)
+    placed = {m for ms in after.values() for m in ms}
     order: list[int] = []
     for k, pc in enumerate(piece):
-        if k in order or pc in anchor:
-            continue  # drawn already, or comes after its anchor
+        if pc in placed:
+            continue  # drawn after its letter
         order.append(k)
-        marks = sorted(
-            (m for m, a in anchor.items() if a == k), key=lambda m: (sign * cx[m], cy[m])
-        )
-        order += [j for m in marks for j, q in enumerate(piece) if q == m]
+        for m in sorted(after.get(k, []), key=lambda m: (-cx[m], cy[m])):  # right to left
+            order += [j for j, q in enumerate(piece) if q == m]
     return order

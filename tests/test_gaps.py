@@ -109,3 +109,25 @@ def test_joined_up_writing_is_drawn_no_smaller_than_keeps_its_lines_apart(monkey
     monkeypatch.setattr(Prepared, "gap", property(lambda self: layout.SEPARATE / (0.5 * free)))
     scale, _, _ = layout.layout(word)
     assert abs(scale - free) <= 0.1 * free  # the floor is below: shrunk as far as the core asks
+
+
+def test_a_short_piece_of_mostly_joined_writing_is_joined_too(monkeypatch):
+    """A cursive hand lifts now and then inside a word ("riv" + "er"): the short piece
+    after the lift is still joined-up writing when most of the drawing is. A short
+    piece beside boxes (a printed drawing) is not."""
+    x_height = 80.0
+    wave = lambda x0, x1: [
+        (x0 + x, 150 - x_height * abs(np.sin(np.pi * x / 60))) for x in np.arange(0, x1 - x0, 2.0)
+    ]
+    word = prepare(drawn(wave(20, 900), wave(960, 1050), shape=(200, 1100)))
+    monkeypatch.setattr(layout, "choose_scale", lambda prep, min_gap: (0.8, False))
+    _, tiles, regions = layout.layout(word)
+    assert len(regions) == 2
+    assert all(t.joined for t in tiles)
+    box = [(20, 20), (180, 20), (180, 180), (20, 180), (20, 20)]
+    printed = prepare(
+        drawn(*[[(x + 180 * k, y) for x, y in box] for k in range(6)], wave(1120, 1210),
+              shape=(200, 1260))
+    )  # fmt: skip
+    _, tiles, regions = layout.layout(printed)
+    assert len(regions) == 7 and not any(t.joined for t in tiles)

@@ -54,9 +54,10 @@ class Tile:
       region: index of the region it belongs to.
       transform: input pixels -> this tile's canvas pixels.
       image: ``bool [100, 100]`` what the planner is given.
-      joined: its ink is joined-up writing (:func:`joined_pieces`): the planner may
-        join its strokes back over their own line, as such a writer goes back
-        up a stem (:data:`jdraw.planner.splits.JOINED_RETRACE`).
+      joined: its ink is joined-up writing (:func:`joined_pieces`), or a piece of a
+        drawing that mostly is (the "er" of a cursive "river" lifted after its v):
+        the planner may join its strokes back over their own line, as such a
+        writer goes back up a stem (:data:`jdraw.planner.splits.JOINED_RETRACE`).
     """
 
     region: int
@@ -324,6 +325,8 @@ def layout(
         x, y, bw, bh = stats[k, :4]
         boxes.append(tuple(whole.to_input([[x, y], [x + bw - 1, y + bh - 1]]).ravel()))
     joined = _wide(stats, core)
+    if _most(stats, joined):  # a hand that joins its letters: its short pieces too
+        joined[:] = True
     tiles: list[Tile] = []
     regions = []
     for r, i in enumerate(_reading_order(boxes, rtl)):

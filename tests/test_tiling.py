@@ -277,23 +277,25 @@ def test_character_sized_image_is_fitted_to_one_canvas():
     assert len(tiles) == 1 and len(regions) == 1
 
 
-def _word_and_letters(thickness: int = 1) -> tuple[np.ndarray, list[np.ndarray]]:
-    """``uint8 [120, 430]`` with 255 ink: a joined-up word and printed letters on one line.
+def _word_and_letters(thickness: int = 1, rings: int = 2) -> tuple[np.ndarray, list[np.ndarray]]:
+    """``uint8 [120, 430]`` with 255 ink (wider with more ``rings``): a joined-up word and
+    printed letters on one line.
 
     The word: five humps 30 px high (its x-height) and a loop rising 50 px above them,
-    one line of ink 200 px long. The letters, as high: two rings, an m (two arches, 50
-    px wide) and a dot over it. Returns the image and the word's and letters' lines.
+    one line of ink 200 px long. The letters, as high: ``rings`` rings, an m (two
+    arches, 50 px wide) and a dot over it. Returns the image and the word's lines.
     """
     x = np.arange(10, 211, dtype=np.float64)
     word = [np.stack([x, 80 - 30 * np.abs(np.sin(np.pi * (x - 10) / 40))], 1)]
     t = np.linspace(0, 2 * np.pi, 60)
     word.append(np.stack([110 + 8 * np.sin(t), 50 - 25 * (1 - np.cos(t))], 1))  # the loop
-    rings = [np.stack([255 + 15 * np.cos(t), 65 + 15 * np.sin(t)], 1) + [40 * k, 0] for k in (0, 1)]
-    xm = np.arange(320, 371, dtype=np.float64)
-    m = np.stack([xm, 80 - 30 * np.abs(np.sin(np.pi * (xm - 320) / 50))], 1)
-    dot = np.array([[345.0, 35.0], [346.0, 36.0]])
-    img = np.zeros((120, 430), np.uint8)
-    for p in [*word, *rings, m, dot]:
+    ring = np.stack([255 + 15 * np.cos(t), 65 + 15 * np.sin(t)], 1)
+    x0 = 280 + 40 * (rings - 1)  # where the m starts, 10 px after the last ring
+    xm = np.arange(x0, x0 + 51, dtype=np.float64)
+    m = np.stack([xm, 80 - 30 * np.abs(np.sin(np.pi * (xm - x0) / 50))], 1)
+    dot = np.array([[x0 + 25.0, 35.0], [x0 + 26.0, 36.0]])
+    img = np.zeros((120, x0 + 110), np.uint8)
+    for p in [*word, *(ring + [40 * k, 0] for k in range(rings)), m, dot]:
         cv2.polylines(img, [np.rint(p).astype(np.int32)], False, 255, thickness)
     return img, word
 
@@ -320,10 +322,12 @@ def test_a_piece_running_through_several_letters_is_joined_up_writing():
 
 def test_joined_up_writing_is_planned_with_joins_back_over_its_line(monkeypatch, tmp_path):
     """plan_image asks the default planner for ``retrace`` in joined-up writing's tiles
-    only, and never where the plan has no splitter or is told not to."""
+    only, and never where the plan has no splitter or is told not to. (With eight rings
+    the printed letters hold most of the ink; where the word does, every tile is
+    joined-up writing: tests/test_gaps.py.)"""
     from jdraw.planner.splits import JOINED_RETRACE
 
-    img, _ = _word_and_letters(thickness=3)
+    img, _ = _word_and_letters(thickness=3, rings=8)
     calls = []
 
     def recording(images, **kwargs):

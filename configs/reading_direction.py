@@ -43,6 +43,7 @@ def get_config() -> ml_collections.ConfigDict:
     c.rtl_words_per_script = 2500  # drawings per right-to-left script
     c.sketches = 600
     c.cursive_words = 600  # drawings of joined-up English (EMS Allure train words), left to right
+    c.print_words = 0  # hand-printed Latin (print_sample); 600 not kept (docs/reading_direction.md)
     c.min_height = 30  # px, ink height of a drawing
     c.max_height = 160
     c.two_words = 0.3  # fraction of drawings with two words
@@ -72,6 +73,7 @@ def tiny() -> ml_collections.ConfigDict:
     c.rtl_words_per_script = 2
     c.sketches = 2
     c.cursive_words = 2
+    c.print_words = 2
     c.steps = 3
     c.batch = 16
     c.val_words_per_font = 1

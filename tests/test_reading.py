@@ -375,3 +375,37 @@ def test_cursive_drawings_join_the_detector_splits_by_word_split():
     assert img.dtype == np.uint8 and ink.any() and not ink[0].any() and not ink[:, 0].any()
     rows = np.flatnonzero(ink.any(1))
     assert cfg.min_height - 2 <= rows[-1] - rows[0] + 1 <= cfg.max_height + 8  # ink height, pen
+
+
+def test_hand_printed_latin_is_fitted_on_only_and_drawn_from_the_training_glyphs(monkeypatch):
+    from configs import reading_direction as rd
+    from jdraw.data import latin
+
+    cfg = rd.tiny()
+    train, val, held = training._font_splits(cfg)
+    assert train["print"] == ["train"] and "print" not in val and "print" not in held
+    cfg.print_words = 0
+    assert all("print" not in d for d in training._font_splits(cfg))
+    cfg.slant, cfg.two_words = 0.0, 0.0
+    drawn = []
+    monkeypatch.setattr(latin, "GLYPHS", _Spy(latin.GLYPHS, drawn))
+    img = training.sample("print", None, np.random.default_rng(0), cfg)
+    assert drawn and set(drawn) <= set(latin.names("train"))
+    assert 3 <= len(drawn) <= 8  # one string of 3-8 glyphs
+    ink = img < 128
+    assert img.dtype == np.uint8 and ink.any() and not ink[0].any() and not ink[:, 0].any()
+    assert img.shape[1] > img.shape[0]  # letters side by side along a line
+    rows = np.flatnonzero(ink.any(1))
+    assert cfg.min_height - 2 <= rows[-1] - rows[0] + 1 <= cfg.max_height + 8
+
+
+class _Spy(dict):
+    """A glyph table that notes each glyph read from it."""
+
+    def __init__(self, table, seen):
+        super().__init__(table)
+        self.seen = seen
+
+    def __getitem__(self, g):
+        self.seen.append(g)
+        return super().__getitem__(g)

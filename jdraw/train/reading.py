@@ -32,6 +32,7 @@ from jdraw.images.prepare import prepare
 from jdraw.train.reading_data import (  # noqa: F401 (the drawings; named here too)
     augment,
     cursive_sample,
+    print_sample,
     sample,
     stretch,
 )
@@ -209,13 +210,17 @@ def _font_splits(cfg) -> tuple[dict, dict, dict]:
     """``{script: fonts}`` to fit on, to set the threshold on, and to measure on.
 
     With ``cfg.cursive_words``, ``"cursive"`` (:func:`cursive_sample`) joins
-    each, its "fonts" the cursive word splits: train, val and test.
+    each, its "fonts" the cursive word splits: train, val and test; with
+    ``cfg.print_words``, ``"print"`` (:func:`print_sample`, the school glyphs of
+    the planner's training split) joins the first.
     """
     train = dict(F.DETECTOR_TRAIN)
     val = {s: F.DETECTOR_VAL.get(s, names) for s, names in F.DETECTOR_TRAIN.items()}
     held = dict(F.DETECTOR_EVAL)
     if cfg.get("cursive_words", 0):
         train["cursive"], val["cursive"], held["cursive"] = ["train"], ["val"], ["test"]
+    if cfg.get("print_words", 0):  # fitted on only: the validation fonts have a printing hand
+        train["print"] = ["train"]
     val["sketch"] = held["sketch"] = [None]
     return train, val, held
 
@@ -234,6 +239,8 @@ def _cached_examples(cfg, workdir, per_script: dict, fonts_by_script=None):
     want = {k: cfg.get(k) for k in keys} | {"fonts": fonts_by_script}
     if cfg.get("cursive_words", 0):
         want["cursive_words"] = cfg.cursive_words
+    if cfg.get("print_words", 0):
+        want["print_words"] = cfg.print_words
     if cfg.get("span", "tall") != "tall":  # older workdirs' examples keep their names
         want["span"] = cfg.span
     tag = hashlib.sha256(json.dumps(want, sort_keys=True).encode()).hexdigest()[:16]
@@ -267,6 +274,8 @@ def train(cfg, workdir) -> dict:
     }
     if "cursive" in train_fonts:
         per_script["cursive"] = cfg.cursive_words
+    if "print" in train_fonts:
+        per_script["print"] = cfg.print_words
     x, y = _cached_examples(cfg, workdir, per_script, train_fonts)
     t1 = time.perf_counter()
     net, logs = fit(

@@ -81,14 +81,73 @@ def cursive_sample(split: str, rng: np.random.Generator, cfg) -> np.ndarray:
     return img
 
 
+def _wobble(p: np.ndarray, rng: np.random.Generator, amount: float) -> np.ndarray:
+    """Polyline ``p [n, 2]`` resampled and bent by a smooth random wander of about ``amount``."""
+    seg = np.hypot(*np.diff(p, axis=0).T)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    t = np.linspace(0.0, s[-1], max(2, int(s[-1] / 0.02) + 1))
+    q = np.stack([np.interp(t, s, p[:, 0]), np.interp(t, s, p[:, 1])], 1)
+    for _ in range(2):  # two slow waves along the stroke, each a random phase and heading
+        f, ph = rng.uniform(0.5, 2.0), rng.uniform(0, 2 * np.pi, 2)
+        q += amount * np.sin(2 * np.pi * f * t[:, None] + ph) * rng.normal(size=2) / 2
+    return q
+
+
+def print_sample(rng: np.random.Generator, cfg) -> np.ndarray:
+    """Hand-printed Latin letters: ``uint8 [H, W]``, left to right.
+
+    Random strings (mostly small letters) of the school glyphs that the planner
+    trains on (:func:`jdraw.data.latin.names` ``("train")``), each glyph a little
+    off in size and height, every stroke bent by a slow wander as a hand bends it,
+    written with a pen 1 px to a twelfth of the height thick, sometimes slanted.
+    Printed handwriting (DKG handwriting, a hand-drawn note) has the separate,
+    uneven letters that fonts of Hebrew letters have; without it the detector
+    read some of it right to left.
+    """
+    from jdraw.data import latin
+
+    glyphs = latin.names("train")
+    small = [g for g in glyphs if g.islower()]
+    strokes, x = [], 0.0
+    for _ in range(1 + int(rng.random() < cfg.two_words)):
+        pool = small if rng.random() < 0.7 else glyphs
+        for g in (pool[int(k)] for k in rng.integers(0, len(pool), int(rng.integers(3, 9)))):
+            k, dy = rng.uniform(0.85, 1.15), rng.uniform(-0.04, 0.04)
+            parts = [np.asarray(p, np.float64) * k + (0.0, dy + 1.0 - k) for p in latin.GLYPHS[g]]
+            lo = min(float(p[:, 0].min()) for p in parts)
+            hi = max(float(p[:, 0].max()) for p in parts)
+            strokes += [_wobble(p + (x - lo, 0.0), rng, rng.uniform(0.0, 0.04)) for p in parts]
+            x += hi - lo + float(rng.uniform(0.08, 0.35))
+        x += 0.6  # a space between words
+    pts = np.concatenate(strokes)
+    lo, hi = pts.min(0), pts.max(0)
+    height = int(rng.integers(cfg.min_height, cfg.max_height + 1))
+    k = height / max(float(hi[1] - lo[1]), 1e-9)
+    pen = int(rng.integers(1, max(2, height // 12) + 1))
+    pad = 8 + pen
+    img = np.full((height + 2 * pad + 1, int(np.ceil((hi[0] - lo[0]) * k)) + 2 * pad + 1), 255)
+    img = img.astype(np.uint8)
+    for p in strokes:
+        if len(p) == 2 and np.allclose(p[0], p[1]):
+            p = p + ((0.0, 0.0), (0.0, 1e-3))
+        q = np.round(((p - lo) * k + pad) * 16).astype(np.int32).reshape(-1, 1, 2)
+        cv2.polylines(img, [q], False, 0, pen, cv2.LINE_AA, 4)
+    if rng.random() < cfg.slant:
+        img = _slant(img, float(rng.uniform(-0.35, 0.35)))
+    return img
+
+
 def sample(script: str, font: str, rng: np.random.Generator, cfg) -> np.ndarray:
     """One random training drawing of ``script`` set in ``font``: ``uint8 [H, W]``.
 
     ``script="cursive"``: :func:`cursive_sample`, ``font`` naming the word split;
-    ``script="sketch"``: :func:`sketch` (``font`` unused).
+    ``script="print"``: :func:`print_sample`; ``script="sketch"``: :func:`sketch`
+    (``font`` unused by both).
     """
     if script == "sketch":
         return sketch(rng)
+    if script == "print":
+        return print_sample(rng, cfg)
     if script == "cursive":
         return cursive_sample(font, rng, cfg)
     words = [

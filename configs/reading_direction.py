@@ -2,6 +2,13 @@
 
 Command:
   python train.py --config configs/reading_direction.py --workdir runs/reading_direction
+  python train.py --config configs/reading_direction.py:ensemble --workdir runs/rd_ens \
+      --config.out=runs/rd_ens/out  # three detectors, seeds 0-2, read as one
+
+The ``ensemble`` variant (with hand-printed Latin, ``print_words``) fits one
+detector per seed of ``members``, each in ``WORKDIR/seed<s>`` and resumable on
+its own (one that has written its ``out`` is read back), then sets the threshold
+of their mean logit on the validation fonts (jdraw.train.reading.combine).
 
 Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EVAL:
   apt-get install culmus culmus-fancy fonts-kacst fonts-kacst-one fonts-arabeyes \
@@ -33,7 +40,8 @@ Wall time and result: see jdraw/assets/reading/direction.json ("seconds",
 import ml_collections
 
 
-def get_config() -> ml_collections.ConfigDict:
+def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
+    """The bundled detector's config; ``"ensemble"``: three fitted apart, read as one."""
     c = ml_collections.ConfigDict()
     c.name = "reading_direction"
     c.stage = "reading"
@@ -63,6 +71,12 @@ def get_config() -> ml_collections.ConfigDict:
     c.val_words_per_font = 20  # drawings per validation font, for the threshold
     c.max_false_rtl = 0.0  # left-to-right validation drawings allowed to read rtl
     c.eval_words_per_font = 12
+    c.members = ()  # seeds: one detector each, read as one (jdraw.train.reading.combine)
+    if variant == "ensemble":
+        c.print_words = 600
+        c.members = (0, 1, 2)
+    elif variant is not None:
+        raise ValueError(f"unknown variant {variant!r}; expected 'ensemble'")
     return c
 
 

@@ -409,3 +409,55 @@ class _Spy(dict):
     def __getitem__(self, g):
         self.seen.append(g)
         return super().__getitem__(g)
+
+
+ENSEMBLE_TOL = 1e-6  # float32 logits
+
+
+def test_an_ensemble_reads_the_mean_of_its_members_and_is_saved_whole(tmp_path):
+    a = reading.DirectionNet((4, 4), width=64, rngs=nnx.Rngs(0))
+    b = reading.DirectionNet((4, 8), width=64, rngs=nnx.Rngs(1))
+    e = reading.DirectionEnsemble([a, b], threshold=1.25)
+    x = np.random.default_rng(0).random((5, reading.WINDOW, 64)).astype(np.float32)
+    za, zb, ze = (reading.window_logits(n, x) for n in (a, b, e))
+    assert not np.allclose(za, zb)
+    np.testing.assert_allclose(ze, (za + zb) / 2, atol=ENSEMBLE_TOL)
+    reading.save(e, tmp_path)
+    got = reading.load(tmp_path)
+    assert isinstance(got, reading.DirectionEnsemble) and len(got.members) == 2
+    assert (got.threshold, got.pool, got.width) == (1.25, "logit", 64)
+    np.testing.assert_allclose(reading.window_logits(got, x), ze, atol=ENSEMBLE_TOL)
+    with pytest.raises(ValueError, match="windows"):
+        reading.DirectionEnsemble([a, reading.DirectionNet((4,), width=32, rngs=nnx.Rngs(0))])
+
+
+def test_a_config_with_members_fits_each_seed_once_and_writes_them_as_one(tmp_path, monkeypatch):
+    from configs import reading_direction as rd
+
+    cfg = rd.tiny()
+    cfg.members, cfg.out = (0, 1), str(tmp_path / "out")
+    rng = np.random.default_rng(0)
+    x = (rng.random((40, reading.WINDOW, 64)) * 255).astype(np.uint8)
+    y = np.arange(40) % 2 == 0
+    monkeypatch.setattr(training, "_cached_examples", lambda *a, **k: (x, y))
+    fake = {"hebrew": [3.0, 1.0], "latin": [-2.0, 0.5]}  # no fonts: scored drawings made up
+    monkeypatch.setattr(training, "scores", lambda net, *a: {p: fake for p in a[-1]})
+    monkeypatch.setattr(training, "accuracy", lambda *a, **k: {})
+    fits = []
+    real_fit = training.fit
+
+    def fit(*a, **k):
+        fits.append(k["seed"])
+        return real_fit(*a, **k)
+
+    monkeypatch.setattr(training, "fit", fit)
+    r = training.train(cfg, tmp_path)
+    assert fits == [0, 1] and r["members"] == 2
+    assert r["threshold"] == 0.5  # the highest left-to-right validation score
+    e = reading.load(tmp_path / "out")
+    one = [reading.load(tmp_path / f"seed{s}" / "out") for s in (0, 1)]
+    xs = x[:8].astype(np.float32) / 255
+    want = np.mean([reading.window_logits(n, xs) for n in one], 0)
+    np.testing.assert_allclose(reading.window_logits(e, xs), want, atol=ENSEMBLE_TOL)
+    training.train(cfg, tmp_path)
+    assert fits == [0, 1]  # the members made are read back, not fitted again

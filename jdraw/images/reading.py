@@ -178,12 +178,37 @@ def drawing_windows(
     return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
 
 
+class DirectionEnsemble(nnx.Module):
+    """Detectors fitted apart read as one: each window's logit is the mean of theirs.
+
+    ``members``: :class:`DirectionNet` of the same window width and span; their own
+    thresholds and poolings are not used. ``threshold`` and ``pool`` are the
+    ensemble's, set on the validation fonts as one net's are
+    (:func:`jdraw.train.reading.combine`).
+    """
+
+    def __init__(self, members, threshold: float = THRESHOLD, pool: str = "logit"):
+        members = list(members)
+        if not members:
+            raise ValueError("an ensemble needs at least one detector")
+        if len({(m.width, m.span) for m in members}) > 1:
+            raise ValueError("the detectors read different windows (width or span)")
+        if pool not in POOLS:
+            raise ValueError(f"pool must be one of {POOLS}, not {pool!r}")
+        self.members = nnx.List(members)
+        self.threshold = float(threshold)
+        self.width, self.span, self.pool = members[0].width, members[0].span, pool
+
+    def __call__(self, x):
+        return jnp.mean(jnp.stack([m(x) for m in self.members]), axis=0)
+
+
 @jax.jit
 def _logits(graphdef, st, x):
     return nnx.merge(graphdef, st)(x)
 
 
-def window_logits(net: DirectionNet, x: np.ndarray) -> np.ndarray:
+def window_logits(net: DirectionNet | DirectionEnsemble, x: np.ndarray) -> np.ndarray:
     """``[n]`` logits of ``x [n, WINDOW, net.width]``, padded to a power of two (few compiles)."""
     if len(x) == 0:
         return np.zeros(0, np.float32)
@@ -218,7 +243,7 @@ def pool_scores(logits: np.ndarray, ink: np.ndarray, pool: str = "logit") -> flo
     raise ValueError(f"pool must be one of {POOLS}, not {pool!r}")
 
 
-def rtl_score(prep: Prepared, net: DirectionNet | None = None) -> float:
+def rtl_score(prep: Prepared, net: DirectionNet | DirectionEnsemble | None = None) -> float:
     """The drawing's score (:func:`pool_scores`): above ``net.threshold`` reads right to left."""
     net = net or load()
     x, ink = drawing_windows(prep, net.width, net.span)
@@ -227,7 +252,7 @@ def rtl_score(prep: Prepared, net: DirectionNet | None = None) -> float:
     return pool_scores(window_logits(net, x), ink, net.pool)
 
 
-def detect(prep: Prepared, net: DirectionNet | None = None) -> str:
+def detect(prep: Prepared, net: DirectionNet | DirectionEnsemble | None = None) -> str:
     """``"rtl"`` or ``"ltr"``: the reading direction of a prepared drawing (see the module doc)."""
     from jdraw import compile_cache
 
@@ -236,12 +261,17 @@ def detect(prep: Prepared, net: DirectionNet | None = None) -> str:
     return "rtl" if rtl_score(prep, net) > net.threshold else "ltr"
 
 
-def save(net: DirectionNet, out_dir=ASSET, provenance: dict | None = None) -> pathlib.Path:
-    """Writes ``direction.npz`` and ``direction.json`` into ``out_dir``."""
+def save(net, out_dir=ASSET, provenance: dict | None = None) -> pathlib.Path:
+    """Writes a :class:`DirectionNet` or :class:`DirectionEnsemble`: ``direction.npz``
+    and ``direction.json`` (an ensemble's lists each member's ``channels``) in ``out_dir``."""
     from jdraw.model import bundle
 
+    if isinstance(net, DirectionEnsemble):
+        sizes = {"members": [list(m.channels) for m in net.members]}
+    else:
+        sizes = {"channels": list(net.channels)}
     meta = {
-        "channels": list(net.channels),
+        **sizes,
         "threshold": net.threshold,
         "width": net.width,
         "pool": net.pool,
@@ -251,20 +281,24 @@ def save(net: DirectionNet, out_dir=ASSET, provenance: dict | None = None) -> pa
     return bundle.save_net(net, out_dir, "direction", meta)
 
 
-def load(folder=None) -> DirectionNet:
+def load(folder=None) -> DirectionNet | DirectionEnsemble:
     """The detector stored in ``folder`` (default: the package's ``assets/reading``)."""
     return _load(str(pathlib.Path(folder or ASSET).resolve()))
 
 
 @functools.lru_cache(maxsize=4)
-def _load(folder: str) -> DirectionNet:
+def _load(folder: str) -> DirectionNet | DirectionEnsemble:
     from jdraw.model import bundle
 
     def build(meta):
-        return DirectionNet(
-            meta["channels"], meta.get("threshold", THRESHOLD), meta.get("width", WINDOW),
+        one = lambda ch: DirectionNet(  # noqa: E731
+            ch, meta.get("threshold", THRESHOLD), meta.get("width", WINDOW),
             meta.get("pool", "logit"), meta.get("span", "tall"), rngs=nnx.Rngs(0),
         )  # fmt: skip
+        if "members" in meta:
+            return DirectionEnsemble([one(ch) for ch in meta["members"]], meta["threshold"],
+                                     meta.get("pool", "logit"))  # fmt: skip
+        return one(meta["channels"])
 
     net = bundle.load_net(folder, "direction", build)
     if net is None:

@@ -256,8 +256,51 @@ def _cached_examples(cfg, workdir, per_script: dict, fonts_by_script=None):
     return x, y
 
 
+def combine(cfg, folders, out) -> dict:
+    """Detectors fitted apart (trainers' ``out`` folders) written to ``out`` as one.
+
+    A :class:`reading.DirectionEnsemble` of them, pooled by mean logit; its
+    threshold is set on the validation drawings as :func:`train` sets one
+    detector's (``cfg.max_false_rtl``, the same seed), and it is measured on the
+    held-out fonts. Returns the summary :func:`train` returns.
+    """
+    t0 = time.perf_counter()
+    nets = [reading.load(f) for f in folders]
+    net = reading.DirectionEnsemble(nets, pool="logit")
+    _, val_fonts, held = _font_splits(cfg)
+    val = scores(net, val_fonts, cfg.val_words_per_font, cfg, cfg.seed + 2, ("logit",))["logit"]
+    net.threshold = choose_threshold(val, cfg.max_false_rtl)
+    recall = _recall(val, net.threshold)
+    val_acc = {
+        s: float(np.mean((np.array(v) > net.threshold) == (s in F.RTL_SCRIPTS)))
+        for s, v in val.items() if v
+    }  # fmt: skip
+    acc = accuracy(net, held, cfg.eval_words_per_font, cfg, seed=cfg.seed + 1)
+    members = [json.loads((pathlib.Path(f) / "direction.json").read_text()) for f in folders]
+    provenance = {
+        "config": cfg.to_dict(),
+        "members": [m.get("provenance", {}) for m in members],
+        "threshold": net.threshold,
+        "pool": net.pool,
+        "val_rtl_recall": recall,
+        "val_scores": _summary(val),
+        "val_accuracy": val_acc,
+        "held_out_accuracy": acc,
+        "seconds": {"measure": round(time.perf_counter() - t0)},
+    }
+    reading.save(net, out, provenance)
+    return {
+        "out": str(out), "members": len(nets), "threshold": net.threshold, "pool": net.pool,
+        "val_rtl_recall": recall, "val_accuracy": val_acc, "held_out_accuracy": acc,
+    }  # fmt: skip
+
+
 def train(cfg, workdir) -> dict:
     """Makes examples, fits the detector, sets its threshold, measures it; writes it to ``cfg.out``.
+
+    With ``cfg.members`` (seeds), one detector is made per seed, each in its own
+    ``workdir/seed<s>`` (so each resumes on its own), and they are written to
+    ``cfg.out`` as one (:func:`combine`).
 
     The threshold and the pooling (:data:`reading.POOLS`; ``cfg.pool``, or
     ``"choose"``: the one that reads more right-to-left validation drawings
@@ -266,6 +309,16 @@ def train(cfg, workdir) -> dict:
     on) and in the training fonts of the scripts that have no validation font,
     drawn with another seed.
     """
+    if cfg.get("members"):
+        folders = []
+        for seed in cfg.members:
+            one = cfg.copy_and_resolve_references()
+            one.seed, one.members = int(seed), ()
+            one.out = str(pathlib.Path(workdir) / f"seed{seed}" / "out")
+            if not (pathlib.Path(one.out) / "direction.json").exists():
+                train(one, pathlib.Path(workdir) / f"seed{seed}")
+            folders.append(one.out)
+        return combine(cfg, folders, cfg.out)
     t0 = time.perf_counter()
     train_fonts, val_fonts, held = _font_splits(cfg)
     per_script = {

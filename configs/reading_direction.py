@@ -8,7 +8,8 @@ Command:
 The ``ensemble`` variant (with hand-printed Latin, ``print_words``) fits one
 detector per seed of ``members``, each in ``WORKDIR/seed<s>`` and resumable on
 its own (one that has written its ``out`` is read back), then sets the threshold
-of their mean logit on the validation fonts (jdraw.train.reading.combine).
+of their mean logit on the validation fonts (jdraw.train.reading.combine). It was
+measured and not bundled (docs/reading_direction.md, 2026-12-08).
 
 Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EVAL:
   apt-get install culmus culmus-fancy fonts-kacst fonts-kacst-one fonts-arabeyes \

@@ -65,11 +65,17 @@ def cursive_sample(split: str, rng: np.random.Generator, cfg) -> np.ndarray:
         lo = min(float(p[:, 0].min()) for p in got)
         strokes += [p + (x - lo, 0.0) for p in got]
         x = max(float(p[:, 0].max()) for p in strokes) + 300.0
+    return _pen_drawing(strokes, rng, cfg, 15)
+
+
+def _pen_drawing(strokes, rng: np.random.Generator, cfg, thinnest: int) -> np.ndarray:
+    """``uint8 [H, W]``: ``strokes`` (x, y down) scaled to a random height, drawn with a
+    pen 1 px to ``1 / thinnest`` of it thick (anti-aliased), sometimes slanted."""
     pts = np.concatenate(strokes)
     lo, hi = pts.min(0), pts.max(0)
     height = int(rng.integers(cfg.min_height, cfg.max_height + 1))
     k = height / max(float(hi[1] - lo[1]), 1e-9)
-    pen = int(rng.integers(1, max(2, height // 15) + 1))
+    pen = int(rng.integers(1, max(2, height // thinnest) + 1))
     pad = 8 + pen
     img = np.full((height + 2 * pad + 1, int(np.ceil((hi[0] - lo[0]) * k)) + 2 * pad + 1), 255)
     img = img.astype(np.uint8)
@@ -119,22 +125,13 @@ def print_sample(rng: np.random.Generator, cfg) -> np.ndarray:
             strokes += [_wobble(p + (x - lo, 0.0), rng, rng.uniform(0.0, 0.04)) for p in parts]
             x += hi - lo + float(rng.uniform(0.08, 0.35))
         x += 0.6  # a space between words
-    pts = np.concatenate(strokes)
-    lo, hi = pts.min(0), pts.max(0)
-    height = int(rng.integers(cfg.min_height, cfg.max_height + 1))
-    k = height / max(float(hi[1] - lo[1]), 1e-9)
-    pen = int(rng.integers(1, max(2, height // 12) + 1))
-    pad = 8 + pen
-    img = np.full((height + 2 * pad + 1, int(np.ceil((hi[0] - lo[0]) * k)) + 2 * pad + 1), 255)
-    img = img.astype(np.uint8)
-    for p in strokes:
-        if len(p) == 2 and np.allclose(p[0], p[1]):
-            p = p + ((0.0, 0.0), (0.0, 1e-3))
-        q = np.round(((p - lo) * k + pad) * 16).astype(np.int32).reshape(-1, 1, 2)
-        cv2.polylines(img, [q], False, 0, pen, cv2.LINE_AA, 4)
-    if rng.random() < cfg.slant:
-        img = _slant(img, float(rng.uniform(-0.35, 0.35)))
-    return img
+    # a dot (two equal points) is drawn as a short line, as the pen leaves it
+    strokes = [p + ((0.0, 0.0), (0.0, 1e-3)) if _is_dot(p) else p for p in strokes]
+    return _pen_drawing(strokes, rng, cfg, 12)
+
+
+def _is_dot(p: np.ndarray) -> bool:
+    return len(p) == 2 and bool(np.allclose(p[0], p[1]))
 
 
 def sample(script: str, font: str, rng: np.random.Generator, cfg) -> np.ndarray:

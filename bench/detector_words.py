@@ -5,13 +5,13 @@
 Each ``DIR`` holds a detector (``direction.json`` and ``direction.npz``). The
 Hebrew, Arabic and Latin words of :data:`jdraw.data.fonts.WORDS` are set in the
 validation fonts (:data:`jdraw.data.fonts.DETECTOR_VAL`), ``--words`` per font,
-60-200 px high, as ``bench/rtl_words.py --fonts val`` sets them, and scored by
-every detector (ink-weighted mean window logit). Each detector alone and the
-mean of all of them read a word right to left above the threshold that the
-trainer's rule sets on its validation drawings (``bench/detector_average.py``'s
-rows). Prints the fraction of each script's words read right to left (for Latin,
-lower is better). Needs the fonts of ``configs/reading_direction.py``; about
-45 s for two detectors on the 2-core CPU.
+60-200 px high, as ``bench/rtl_words.py --fonts val`` sets them (its
+``set_words``), and scored by every detector (ink-weighted mean window logit).
+Each detector alone and the mean of all of them read a word right to left above
+the threshold that the trainer's rule sets on its validation drawings
+(``bench/detector_average.py``'s rows). Prints the fraction of each script's
+words read right to left (for Latin, lower is better). Needs the fonts of
+``configs/reading_direction.py``; about 25 s for two detectors on the 2-core CPU.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ import time
 
 import numpy as np
 from detector_average import drawing_scores, score_row
+from rtl_words import set_words
 
 import configs.reading_direction as cfg_module
 from jdraw.data import fonts as F
@@ -31,20 +32,11 @@ from jdraw.train import reading as training
 
 def word_scores(nets, script: str, per_font: int, seed: int = 0) -> np.ndarray:
     """``[words, nets]`` scores of ``script``'s words set in its validation fonts."""
-    rng = np.random.default_rng(seed)
-    got, k = [], 0
-    for font in F.DETECTOR_VAL[script]:
-        for _ in range(per_font):
-            text = F.WORDS[script][k % len(F.WORDS[script])]
-            k += 1
-            if not F.covers(font, text):
-                continue
-            height = int(rng.integers(60, 201))
-            rtl = "rtl" if script in F.RTL_SCRIPTS else "ltr"
-            img = F.render_word(text, font, height, direction=rtl)
-            x, ink = reading.drawing_windows(prepare(img), nets[0].width, nets[0].span)
-            z = [reading.window_logits(n, x) for n in nets]
-            got.append([reading.pool_scores(v, ink, "logit") for v in z])
+    got = []
+    for _, _, _, img in set_words(script, per_font, np.random.default_rng(seed), F.DETECTOR_VAL):
+        x, ink = reading.drawing_windows(prepare(img), nets[0].width, nets[0].span)
+        z = [reading.window_logits(n, x) for n in nets]
+        got.append([reading.pool_scores(v, ink, "logit") for v in z])
     return np.array(got, np.float64).reshape(-1, len(nets))
 
 

@@ -44,6 +44,21 @@ from jdraw.tiling.plan_image import plan_image
 MARGIN = 8  # px of white around a rendered word (fonts.render_word's default)
 
 
+def set_words(script: str, words: int, rng: np.random.Generator, fonts: dict | None = None):
+    """Yields ``(text, font, height, image)``: ``words`` of our words per font of
+    ``script`` (default: the held-out fonts), each set 60-200 px high in its direction."""
+    k = 0
+    for font in (fonts or F.DETECTOR_EVAL)[script]:
+        for _ in range(words):
+            text = F.WORDS[script][k % len(F.WORDS[script])]
+            k += 1
+            if not F.covers(font, text):
+                continue
+            height = int(rng.integers(60, 201))
+            way = "rtl" if script in F.RTL_SCRIPTS else "ltr"
+            yield text, font, height, F.render_word(text, font, height, direction=way)
+
+
 def measure(
     script: str,
     words: int,
@@ -54,30 +69,22 @@ def measure(
 ) -> dict:
     first = rho = read = 0.0
     n = n_rho = 0
-    k = 0
-    for font in (fonts or F.DETECTOR_EVAL)[script]:
-        for _ in range(words):
-            text = F.WORDS[script][k % len(F.WORDS[script])]
-            k += 1
-            if not F.covers(font, text):
-                continue
-            height = int(rng.integers(60, 201))
-            rtl = script in F.RTL_SCRIPTS
-            img = F.render_word(text, font, height, direction="rtl" if rtl else "ltr")
-            plan = plan_image(img, progress=False, direction=direction, checkpoint=checkpoint)
-            read += plan.direction == "rtl"
-            xs = [float(s[:, 0].mean()) for s in plan.strokes]
-            if len(xs) >= 3:
-                rho += spearmanr(np.arange(len(xs)), xs)[0]
-                n_rho += 1
-            right = img.shape[1] - 1 - MARGIN
-            if rtl:
-                w1 = F.first_letter_width(text, font, height)
-                first += plan.strokes[0][0, 0] >= right - w1 - 0.05 * height
-            else:
-                w1 = F.first_letter_width(text, font, height, "ltr")
-                first += plan.strokes[0][0, 0] <= MARGIN + w1 + 0.05 * height
-            n += 1
+    rtl = script in F.RTL_SCRIPTS
+    for text, font, height, img in set_words(script, words, rng, fonts):
+        plan = plan_image(img, progress=False, direction=direction, checkpoint=checkpoint)
+        read += plan.direction == "rtl"
+        xs = [float(s[:, 0].mean()) for s in plan.strokes]
+        if len(xs) >= 3:
+            rho += spearmanr(np.arange(len(xs)), xs)[0]
+            n_rho += 1
+        right = img.shape[1] - 1 - MARGIN
+        if rtl:
+            w1 = F.first_letter_width(text, font, height)
+            first += plan.strokes[0][0, 0] >= right - w1 - 0.05 * height
+        else:
+            w1 = F.first_letter_width(text, font, height, "ltr")
+            first += plan.strokes[0][0, 0] <= MARGIN + w1 + 0.05 * height
+        n += 1
     return {"words": n, "read_rtl": read / n, "first": first / n, "rho": rho / max(n_rho, 1)}
 
 

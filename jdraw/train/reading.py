@@ -183,6 +183,14 @@ def _recall(by_script: dict, threshold: float) -> float:
     return float(np.mean(np.array(rtl) > threshold)) if rtl else 0.0
 
 
+def _accuracy_at(by_script: dict, threshold: float) -> dict:
+    """Each script's fraction of drawings read right (right to left above ``threshold``)."""
+    return {
+        s: float(np.mean((np.array(v) > threshold) == (s in F.RTL_SCRIPTS)))
+        for s, v in by_script.items() if v
+    }  # fmt: skip
+
+
 def _summary(by_script: dict) -> dict:
     """Each script's score quantiles (min, 10%, median, 90%, max), rounded."""
     qs = [0.0, 0.1, 0.5, 0.9, 1.0]
@@ -271,10 +279,7 @@ def combine(cfg, folders, out) -> dict:
     val = scores(net, val_fonts, cfg.val_words_per_font, cfg, cfg.seed + 2, ("logit",))["logit"]
     net.threshold = choose_threshold(val, cfg.max_false_rtl)
     recall = _recall(val, net.threshold)
-    val_acc = {
-        s: float(np.mean((np.array(v) > net.threshold) == (s in F.RTL_SCRIPTS)))
-        for s, v in val.items() if v
-    }  # fmt: skip
+    val_acc = _accuracy_at(val, net.threshold)
     acc = accuracy(net, held, cfg.eval_words_per_font, cfg, seed=cfg.seed + 1)
     members = [json.loads((pathlib.Path(f) / "direction.json").read_text()) for f in folders]
     provenance = {
@@ -345,10 +350,7 @@ def train(cfg, workdir) -> dict:
         pool = max(reading.POOLS, key=lambda p: (recall[p], p == "logit"))
     net.pool, net.threshold = pool, cut[pool]
     val = by_pool[pool]
-    val_acc = {
-        s: float(np.mean((np.array(v) > net.threshold) == (s in F.RTL_SCRIPTS)))
-        for s, v in val.items() if v
-    }  # fmt: skip
+    val_acc = _accuracy_at(val, net.threshold)
     acc = accuracy(net, held, cfg.eval_words_per_font, cfg, seed=cfg.seed + 1)
     t3 = time.perf_counter()
     provenance = {

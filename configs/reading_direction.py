@@ -4,12 +4,16 @@ Command:
   python train.py --config configs/reading_direction.py --workdir runs/reading_direction
   python train.py --config configs/reading_direction.py:ensemble --workdir runs/rd_ens \
       --config.out=runs/rd_ens/out  # three detectors, seeds 0-2, read as one
+  python train.py --config configs/reading_direction.py:elastic --workdir runs/rd_elastic \
+      --config.out=runs/rd_elastic/out  # windows bent by a smooth random field
 
 The ``ensemble`` variant (with hand-printed Latin, ``print_words``) fits one
 detector per seed of ``members``, each in ``WORKDIR/seed<s>`` and resumable on
 its own (one that has written its ``out`` is read back), then sets the threshold
 of their mean logit on the validation fonts (jdraw.train.reading.combine). It was
-measured and not bundled (docs/reading_direction.md, 2026-12-08).
+measured and not bundled (docs/reading_direction.md, 2026-12-08). So was the
+``elastic`` variant (``elastic = 2.0``: half of each batch's windows bent by
+jdraw.train.reading_data.bend), alone and read as one with the bundled detector.
 
 Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EVAL:
   apt-get install culmus culmus-fancy fonts-kacst fonts-kacst-one fonts-arabeyes \
@@ -42,7 +46,8 @@ import ml_collections
 
 
 def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
-    """The bundled detector's config; ``"ensemble"``: three fitted apart, read as one."""
+    """The bundled detector's config; ``"ensemble"``: three fitted apart, read as one;
+    ``"elastic"``: windows also bent as other fonts and hands bend letters."""
     c = ml_collections.ConfigDict()
     c.name = "reading_direction"
     c.stage = "reading"
@@ -68,6 +73,7 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     c.batch = 256
     c.learning_rate = 3e-3
     c.augment = 1.0  # strength of jdraw.train.reading.augment's distortions (0: thickening only)
+    c.elastic = 0.0  # px: half of the windows bent by a smooth random field (reading_data.bend)
     c.pool = "choose"  # window pooling: "logit", "prob", or "choose" on the validation fonts
     c.val_words_per_font = 20  # drawings per validation font, for the threshold
     c.max_false_rtl = 0.0  # left-to-right validation drawings allowed to read rtl
@@ -76,8 +82,10 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     if variant == "ensemble":
         c.print_words = 600
         c.members = (0, 1, 2)
+    elif variant == "elastic":
+        c.elastic = 2.0
     elif variant is not None:
-        raise ValueError(f"unknown variant {variant!r}; expected 'ensemble'")
+        raise ValueError(f"unknown variant {variant!r}; expected 'ensemble' or 'elastic'")
     return c
 
 

@@ -311,6 +311,27 @@ def test_augment_keeps_shapes_and_range_and_distorts(tmp_path):
     assert len({(r.min(), r.max()) for r in rows}) > 3  # windows distorted differently
 
 
+def test_bending_moves_a_line_smoothly_and_elastic_augment_bends():
+    from jdraw.train import reading_data
+
+    v = np.zeros((reading.WINDOW, 64), np.float32)
+    v[15, 8:56] = 1.0  # a straight horizontal line, one pixel thick
+    bent = [reading_data.bend(v, np.random.default_rng(s), 2.0) for s in range(8)]
+    for b in bent:
+        cols = np.flatnonzero(b.max(0) > 0.3)
+        rows = b[:, cols].argmax(0)  # where the line passes in each column
+        # Still one line: ink kept within 30% (a 2-px spread moves it, does not
+        # break or thicken it) and its height changes by at most 1 px per column.
+        assert abs(b.sum() - v.sum()) < 0.3 * v.sum()
+        assert np.abs(np.diff(rows)).max() <= 1
+    assert sum(not np.array_equal(np.argmax(b, 0), np.argmax(v, 0)) for b in bent) >= 6
+    np.testing.assert_array_equal(reading_data.bend(v, np.random.default_rng(0), 0.0), v)
+
+    xb = np.repeat(v[None], 16, 0)
+    plain = training.augment(xb, np.random.default_rng(3), 1.0)
+    assert not np.array_equal(training.augment(xb, np.random.default_rng(3), 1.0, 2.0), plain)
+
+
 def test_examples_are_made_once_per_data_setting(tmp_path, monkeypatch):
     from configs import reading_direction as rd
 

@@ -77,7 +77,7 @@ def make_examples(fonts_by_script: dict, words_per_script, sketches: int, cfg, s
 def fit(
     x, y, *, steps: int, batch: int, lr: float, channels, seed: int = 0,
     augment_strength: float = 0.0, workdir=None, checkpoint_every: int = 500,
-    stop_after: int | None = None,
+    stop_after: int | None = None, elastic: float = 0.0,
 ):  # fmt: skip
     """Fits a :class:`reading.DirectionNet` on windows ``x [n, H, W] uint8`` and labels ``y [n]``.
 
@@ -121,7 +121,7 @@ def fit(
         idx = np.concatenate(
             [rng.choice(pos, batch // 2), rng.choice(neg, batch - batch // 2)]
         )  # fmt: skip
-        xb = augment(x[idx].astype(np.float32) / 255.0, rng, augment_strength)
+        xb = augment(x[idx].astype(np.float32) / 255.0, rng, augment_strength, elastic)
         params, opt, loss, acc = step(params, opt, xb, y[idx].astype(np.float32))
         if s % 500 == 0 or s == steps - 1:
             logs.append({"step": s, "loss": float(loss), "window_acc": float(acc)})
@@ -339,6 +339,7 @@ def train(cfg, workdir) -> dict:
     net, logs = fit(
         x, y, steps=cfg.steps, batch=cfg.batch, lr=cfg.learning_rate, channels=cfg.channels,
         seed=cfg.seed, augment_strength=cfg.get("augment", 0.0), workdir=workdir,
+        elastic=cfg.get("elastic", 0.0),
     )  # fmt: skip
     t2 = time.perf_counter()
     net.span = cfg.get("span", "tall")

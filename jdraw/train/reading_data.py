@@ -170,7 +170,27 @@ def stretch(line: np.ndarray, factor: float) -> np.ndarray:
     return out
 
 
-def augment(xb: np.ndarray, rng: np.random.Generator, strength: float = 1.0) -> np.ndarray:
+BEND_GRID = (3, 5)  # rows, columns of the random displacements that bend() smooths
+
+
+def bend(v: np.ndarray, rng: np.random.Generator, sigma: float) -> np.ndarray:
+    """A window ``v [H, W]`` bent by a smooth random displacement field.
+
+    Displacements of ``sigma`` px (a normal's spread) on a coarse
+    :data:`BEND_GRID` are interpolated over the window (bicubic), so neighbouring
+    pixels move together: strokes stay lines, their curves and proportions change.
+    """
+    h, w = v.shape
+    d = rng.normal(0.0, sigma, (2, *BEND_GRID)).astype(np.float32)
+    dx = cv2.resize(d[0], (w, h), interpolation=cv2.INTER_CUBIC)
+    dy = cv2.resize(d[1], (w, h), interpolation=cv2.INTER_CUBIC)
+    mx, my = np.meshgrid(np.arange(w, dtype=np.float32), np.arange(h, dtype=np.float32))
+    return cv2.remap(v, mx + dx, my + dy, cv2.INTER_LINEAR, borderValue=0.0)
+
+
+def augment(
+    xb: np.ndarray, rng: np.random.Generator, strength: float = 1.0, elastic: float = 0.0
+) -> np.ndarray:
     """Windows ``xb [B, H, W]`` in [0, 1], each distorted as another font or hand might draw it.
 
     Per window: the ink thickened by a pixel across or along the line (half of
@@ -178,6 +198,9 @@ def augment(xb: np.ndarray, rng: np.random.Generator, strength: float = 1.0) -> 
     scaled in height by up to ``1 +- 0.15 * strength``, its baseline tilted
     (a vertical shear up to ``0.12 * strength``) and its letters slanted (a
     horizontal shear up to ``0.3 * strength``), all about the window's centre.
+    With ``elastic`` > 0, half of the windows are also bent by a smooth random
+    field (:func:`bend`, ``elastic`` px), as letters differ from font to font and
+    hand to hand; with 0, no random number is drawn for it.
     """
     out = np.empty_like(xb)
     b, h, w = xb.shape
@@ -191,6 +214,8 @@ def augment(xb: np.ndarray, rng: np.random.Generator, strength: float = 1.0) -> 
             c = np.array([w / 2.0, h / 2.0])
             m = np.concatenate([a, (c - a @ c)[:, None]], axis=1)
             v = cv2.warpAffine(v, m, (w, h), flags=cv2.INTER_LINEAR, borderValue=0.0)
+        if elastic > 0 and rng.random() < 0.5:
+            v = bend(v, rng, elastic)
         r = rng.random()
         if r < 0.25:
             v = np.maximum(v, np.roll(v, 1, axis=0))

@@ -12,7 +12,10 @@ sketches) with another seed, 300 drawings of KanjiVG validation characters
 (``bench/detector_words.py``'s). For each detector it prints, at its own threshold
 and at fixed ones, the fraction of each script read right to left: for the
 right-to-left scripts that is what should be high, for the others it is a
-mistake. Nothing held out is read. Needs the fonts of
+mistake. ``--more-faces`` adds drawings of han, kana and Hangul set in CJK faces
+of no split (:data:`jdraw.data.fonts.DETECTOR_CHECK`; ``apt-get install
+fonts-arphic-bsmi00lp fonts-arphic-gbsn00lp fonts-arphic-gkai00mp fonts-hanazono
+fonts-ipaexfont-mincho fonts-baekmuk``). Nothing held out is read. Needs the fonts of
 ``configs/reading_direction.py``; about 90 s per detector on the 2-core CPU.
 """
 
@@ -38,8 +41,10 @@ SKETCHES = 5  # times --per-font random sketches (they have no fonts)
 KANJI = 300  # drawings of KanjiVG validation characters
 
 
-def drawings(per_font: int, seed: int) -> dict:
-    """``{set: [images]}``: the validation fonts' drawings, KanjiVG's and our words."""
+def drawings(per_font: int, seed: int, more_faces: bool = False) -> dict:
+    """``{set: [images]}``: the validation fonts' drawings, KanjiVG's and our words;
+    with ``more_faces``, also ``per_font`` drawings per face of
+    :data:`jdraw.data.fonts.DETECTOR_CHECK` (``"han, more faces"``, ...)."""
     cfg = cfg_module.get_config()
     _, val_fonts, _ = training._font_splits(cfg)
     rng = np.random.default_rng(seed)
@@ -54,6 +59,10 @@ def drawings(per_font: int, seed: int) -> dict:
     for _ in range(KANJI):
         chars = r.choice(idx, int(r.integers(1, 4)))
         out["kanjivg"].append(draw(ks, chars, float(r.uniform(0.8, 3.0)), int(r.integers(1, 8))))
+    if more_faces:
+        for script, names in F.DETECTOR_CHECK.items():
+            got = [sample(script, font, rng, cfg) for font in names for _ in range(per_font)]
+            out[f"{script}, more faces"] = got
     for s in ("arabic", "hebrew", "latin"):
         got = set_words(s, 24, np.random.default_rng(0), F.DETECTOR_VAL)
         out[f"{s} words"] = [img for *_, img in got]
@@ -77,9 +86,13 @@ def main(argv=None) -> None:
     p.add_argument("detectors", nargs="+", help="folders of direction.json/.npz")
     p.add_argument("--per-font", type=int, default=60, help="drawings per validation font")
     p.add_argument("--seed", type=int, default=3, help="not the trainer's 2")
+    p.add_argument(
+        "--more-faces", action="store_true",
+        help="also the CJK faces of no split (jdraw.data.fonts.DETECTOR_CHECK)",
+    )  # fmt: skip
     a = p.parse_args(argv)
     t0 = time.perf_counter()
-    sets = drawings(a.per_font, a.seed)
+    sets = drawings(a.per_font, a.seed, a.more_faces)
     names = list(sets)
     print("drawings: " + ", ".join(f"{s} {len(v)}" for s, v in sets.items()))
     for d in a.detectors:

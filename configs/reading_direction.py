@@ -6,6 +6,8 @@ Command:
       --config.out=runs/rd_ens/out  # three detectors, seeds 0-2, read as one
   python train.py --config configs/reading_direction.py:elastic --workdir runs/rd_elastic \
       --config.out=runs/rd_elastic/out  # windows bent by a smooth random field
+  python train.py --config configs/reading_direction.py:elastic_cjk --workdir runs/rd_ecjk \
+      --config.out=runs/rd_ecjk/out  # the same, with more CJK faces to fit on
 
 The ``ensemble`` variant (with hand-printed Latin, ``print_words``) fits one
 detector per seed of ``members``, each in ``WORKDIR/seed<s>`` and resumable on
@@ -14,6 +16,9 @@ of their mean logit on the validation fonts (jdraw.train.reading.combine). It wa
 measured and not bundled (docs/reading_direction.md, 2026-12-08). So was the
 ``elastic`` variant (``elastic = 2.0``: half of each batch's windows bent by
 jdraw.train.reading_data.bend), alone and read as one with the bundled detector.
+``elastic_cjk`` also fits on the CJK faces of jdraw.data.fonts.DETECTOR_MORE_TRAIN
+(``more_cjk``; apt-get install fonts-wqy-microhei fonts-cwtex-ming
+fonts-arphic-bkai00mp fonts-takao-mincho fonts-vlgothic fonts-unfonts-extra).
 
 Needs the fonts of jdraw.data.fonts.DETECTOR_TRAIN, DETECTOR_VAL and DETECTOR_EVAL:
   apt-get install culmus culmus-fancy fonts-kacst fonts-kacst-one fonts-arabeyes \
@@ -74,6 +79,7 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     c.learning_rate = 3e-3
     c.augment = 1.0  # strength of jdraw.train.reading.augment's distortions (0: thickening only)
     c.elastic = 0.0  # px: half of the windows bent by a smooth random field (reading_data.bend)
+    c.more_cjk = False  # also fit on jdraw.data.fonts.DETECTOR_MORE_TRAIN's CJK faces
     c.pool = "choose"  # window pooling: "logit", "prob", or "choose" on the validation fonts
     c.val_words_per_font = 20  # drawings per validation font, for the threshold
     c.max_false_rtl = 0.0  # left-to-right validation drawings allowed to read rtl
@@ -82,10 +88,13 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     if variant == "ensemble":
         c.print_words = 600
         c.members = (0, 1, 2)
-    elif variant == "elastic":
+    elif variant in ("elastic", "elastic_cjk"):
         c.elastic = 2.0
+        c.more_cjk = variant == "elastic_cjk"
     elif variant is not None:
-        raise ValueError(f"unknown variant {variant!r}; expected 'ensemble' or 'elastic'")
+        raise ValueError(
+            f"unknown variant {variant!r}; expected 'ensemble', 'elastic' or 'elastic_cjk'"
+        )
     return c
 
 

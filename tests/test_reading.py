@@ -199,7 +199,12 @@ def test_font_splits_never_overlap():
         train = set(F.DETECTOR_TRAIN[script])
         val, held = set(F.DETECTOR_VAL.get(script, ())), set(F.DETECTOR_EVAL.get(script, ()))
         assert not (train & val) and not (train & held) and not (val & held), script
+        check = set(F.DETECTOR_CHECK.get(script, ()))
+        assert not (check & (train | val | held)), script  # the check's faces are in no split
+        more = set(F.DETECTOR_MORE_TRAIN.get(script, ()))
+        assert not (more & (train | val | held | check)), script
     assert set(F.DETECTOR_VAL) <= set(F.DETECTOR_TRAIN)
+    assert set(F.DETECTOR_CHECK) <= set(F.DETECTOR_TRAIN) - set(F.RTL_SCRIPTS)
 
 
 def test_threshold_lets_through_at_most_the_allowed_false_rtl():

@@ -52,7 +52,8 @@ import ml_collections
 
 def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     """The bundled detector's config; ``"ensemble"``: three fitted apart, read as one;
-    ``"elastic"``: windows also bent as other fonts and hands bend letters."""
+    ``"elastic"``: windows also bent as other fonts and hands bend letters;
+    ``"elastic_cjk"``: the same, with more CJK faces to fit on."""
     c = ml_collections.ConfigDict()
     c.name = "reading_direction"
     c.stage = "reading"

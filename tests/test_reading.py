@@ -207,6 +207,19 @@ def test_font_splits_never_overlap():
     assert set(F.DETECTOR_CHECK) <= set(F.DETECTOR_TRAIN) - set(F.RTL_SCRIPTS)
 
 
+def test_more_cjk_faces_are_fitted_on_only_where_the_config_asks():
+    from configs import reading_direction as rd
+    from jdraw.data import fonts as F
+
+    plain = training._font_splits(rd.get_config())
+    more = training._font_splits(rd.get_config("elastic_cjk"))
+    assert more[1:] == plain[1:]  # the same validation and held-out fonts
+    for script, faces in F.DETECTOR_MORE_TRAIN.items():
+        assert not set(faces) & set(plain[0][script])
+        assert more[0][script] == plain[0][script] + faces
+    assert rd.get_config("elastic").elastic > 0 and not rd.get_config("elastic").more_cjk
+
+
 def test_threshold_lets_through_at_most_the_allowed_false_rtl():
     from jdraw.train import reading as training
 

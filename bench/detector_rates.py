@@ -13,7 +13,7 @@ sketches) with another seed, 300 drawings of KanjiVG validation characters
 and at fixed ones, the fraction of each script read right to left: for the
 right-to-left scripts that is what should be high, for the others it is a
 mistake. ``--more-faces`` adds drawings of han, kana and Hangul set in CJK faces
-of no split (:data:`jdraw.data.fonts.DETECTOR_CHECK`; ``apt-get install
+of no split (:data:`jdraw.data.cjk_faces.DETECTOR_CHECK`; ``apt-get install
 fonts-arphic-bsmi00lp fonts-arphic-gbsn00lp fonts-arphic-gkai00mp fonts-hanazono
 fonts-ipaexfont-mincho fonts-baekmuk``). Nothing held out is read. Needs the fonts of
 ``configs/reading_direction.py``; about 90 s per detector on the 2-core CPU.
@@ -29,8 +29,8 @@ from detector_kanji import draw
 from rtl_words import set_words
 
 import configs.reading_direction as cfg_module
+from jdraw.data import cjk_faces, kanji
 from jdraw.data import fonts as F
-from jdraw.data import kanji
 from jdraw.images import reading
 from jdraw.images.prepare import prepare
 from jdraw.train import reading as training
@@ -44,7 +44,7 @@ KANJI = 300  # drawings of KanjiVG validation characters
 def drawings(per_font: int, seed: int, more_faces: bool = False) -> dict:
     """``{set: [images]}``: the validation fonts' drawings, KanjiVG's and our words;
     with ``more_faces``, also ``per_font`` drawings per face of
-    :data:`jdraw.data.fonts.DETECTOR_CHECK` (``"han, more faces"``, ...)."""
+    :data:`jdraw.data.cjk_faces.DETECTOR_CHECK` (``"han, more faces"``, ...)."""
     cfg = cfg_module.get_config()
     _, val_fonts, _ = training._font_splits(cfg)
     rng = np.random.default_rng(seed)
@@ -60,7 +60,7 @@ def drawings(per_font: int, seed: int, more_faces: bool = False) -> dict:
         chars = r.choice(idx, int(r.integers(1, 4)))
         out["kanjivg"].append(draw(ks, chars, float(r.uniform(0.8, 3.0)), int(r.integers(1, 8))))
     if more_faces:
-        for script, names in F.DETECTOR_CHECK.items():
+        for script, names in cjk_faces.DETECTOR_CHECK.items():
             got = [sample(script, font, rng, cfg) for font in names for _ in range(per_font)]
             out[f"{script}, more faces"] = got
     for s in ("arabic", "hebrew", "latin"):
@@ -88,7 +88,7 @@ def main(argv=None) -> None:
     p.add_argument("--seed", type=int, default=3, help="not the trainer's 2")
     p.add_argument(
         "--more-faces", action="store_true",
-        help="also the CJK faces of no split (jdraw.data.fonts.DETECTOR_CHECK)",
+        help="also the CJK faces of no split (jdraw.data.cjk_faces.DETECTOR_CHECK)",
     )  # fmt: skip
     a = p.parse_args(argv)
     t0 = time.perf_counter()

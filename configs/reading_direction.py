@@ -16,7 +16,7 @@ of their mean logit on the validation fonts (jdraw.train.reading.combine). It wa
 measured and not bundled (docs/reading_direction.md, 2026-12-08). So was the
 ``elastic`` variant (``elastic = 2.0``: half of each batch's windows bent by
 jdraw.train.reading_data.bend), alone and read as one with the bundled detector.
-``elastic_cjk`` also fits on the CJK faces of jdraw.data.fonts.DETECTOR_MORE_TRAIN
+``elastic_cjk`` also fits on the CJK faces of jdraw.data.cjk_faces.DETECTOR_MORE_TRAIN
 (``more_cjk``; apt-get install fonts-wqy-microhei fonts-cwtex-ming
 fonts-arphic-bkai00mp fonts-takao-mincho fonts-vlgothic fonts-unfonts-extra).
 
@@ -80,7 +80,7 @@ def get_config(variant: str | None = None) -> ml_collections.ConfigDict:
     c.learning_rate = 3e-3
     c.augment = 1.0  # strength of jdraw.train.reading.augment's distortions (0: thickening only)
     c.elastic = 0.0  # px: half of the windows bent by a smooth random field (reading_data.bend)
-    c.more_cjk = False  # also fit on jdraw.data.fonts.DETECTOR_MORE_TRAIN's CJK faces
+    c.more_cjk = False  # also fit on jdraw.data.cjk_faces.DETECTOR_MORE_TRAIN's CJK faces
     c.pool = "choose"  # window pooling: "logit", "prob", or "choose" on the validation fonts
     c.val_words_per_font = 20  # drawings per validation font, for the threshold
     c.max_false_rtl = 0.0  # left-to-right validation drawings allowed to read rtl

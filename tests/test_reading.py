@@ -193,28 +193,29 @@ def test_fit_learns_and_round_trips(tmp_path):
 
 
 def test_font_splits_never_overlap():
+    from jdraw.data import cjk_faces
     from jdraw.data import fonts as F
 
     for script in F.DETECTOR_TRAIN:
         train = set(F.DETECTOR_TRAIN[script])
         val, held = set(F.DETECTOR_VAL.get(script, ())), set(F.DETECTOR_EVAL.get(script, ()))
         assert not (train & val) and not (train & held) and not (val & held), script
-        check = set(F.DETECTOR_CHECK.get(script, ()))
+        check = set(cjk_faces.DETECTOR_CHECK.get(script, ()))
         assert not (check & (train | val | held)), script  # the check's faces are in no split
-        more = set(F.DETECTOR_MORE_TRAIN.get(script, ()))
+        more = set(cjk_faces.DETECTOR_MORE_TRAIN.get(script, ()))
         assert not (more & (train | val | held | check)), script
     assert set(F.DETECTOR_VAL) <= set(F.DETECTOR_TRAIN)
-    assert set(F.DETECTOR_CHECK) <= set(F.DETECTOR_TRAIN) - set(F.RTL_SCRIPTS)
+    assert set(cjk_faces.DETECTOR_CHECK) <= set(F.DETECTOR_TRAIN) - set(F.RTL_SCRIPTS)
 
 
 def test_more_cjk_faces_are_fitted_on_only_where_the_config_asks():
     from configs import reading_direction as rd
-    from jdraw.data import fonts as F
+    from jdraw.data import cjk_faces
 
     plain = training._font_splits(rd.get_config())
     more = training._font_splits(rd.get_config("elastic_cjk"))
     assert more[1:] == plain[1:]  # the same validation and held-out fonts
-    for script, faces in F.DETECTOR_MORE_TRAIN.items():
+    for script, faces in cjk_faces.DETECTOR_MORE_TRAIN.items():
         assert not set(faces) & set(plain[0][script])
         assert more[0][script] == plain[0][script] + faces
     assert rd.get_config("elastic").elastic > 0 and not rd.get_config("elastic").more_cjk

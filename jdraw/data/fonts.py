@@ -16,6 +16,8 @@ import pathlib
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
+from jdraw.data.cjk_faces import CJK_FACES
+
 FONT_DIRS = (pathlib.Path("/usr/share/fonts"),)
 
 
@@ -150,22 +152,7 @@ FONTS = {
     "ipa_gothic": Font("ipag.ttf", "fonts-ipafont-gothic"),
     "ipa_mincho": Font("ipam.ttf", "fonts-ipafont-mincho"),
     "un_batang": Font("UnBatang.ttf", "fonts-unfonts-core"),
-    # CJK faces in no split: bench/detector_rates.py's left-to-right check only
-    "arphic_bsmi": Font("bsmi00lp.ttf", "fonts-arphic-bsmi00lp"),
-    "arphic_gbsn": Font("gbsn00lp.ttf", "fonts-arphic-gbsn00lp"),
-    "arphic_gkai": Font("gkai00mp.ttf", "fonts-arphic-gkai00mp"),
-    "hanazono": Font("HanaMinA.ttf", "fonts-hanazono"),
-    "ipaex_mincho": Font("ipaexm.ttf", "fonts-ipaexfont-mincho"),
-    "baekmuk_batang": Font("batang.ttf", "fonts-baekmuk"),
-    "baekmuk_gulim": Font("gulim.ttf", "fonts-baekmuk"),
-    # More CJK faces to fit on (configs/reading_direction.py:elastic_cjk)
-    "wqy_microhei": Font("wqy-microhei.ttc", "fonts-wqy-microhei"),
-    "cwtex_ming": Font("cwming.ttf", "fonts-cwtex-ming"),
-    "arphic_bkai": Font("bkai00mp.ttf", "fonts-arphic-bkai00mp"),
-    "takao_mincho": Font("TakaoMincho.ttf", "fonts-takao-mincho"),
-    "vl_gothic": Font("VL-Gothic-Regular.ttf", "fonts-vlgothic"),
-    "un_pen": Font("UnPen.ttf", "fonts-unfonts-extra"),
-    "un_pilgia": Font("UnPilgia.ttf", "fonts-unfonts-extra"),
+    **{name: Font(*where) for name, where in CJK_FACES.items()},
     "un_dotum": Font("UnDotum.ttf", "fonts-unfonts-core"),
     "nanum_gothic": Font("NanumGothic.ttf", "fonts-nanum"),
     "nanum_myeongjo": Font("NanumMyeongjo.ttf", "fonts-nanum"),
@@ -268,26 +255,10 @@ DETECTOR_VAL = {
     "kana": ["ipa_mincho"],
     "han": ["arphic_uming", "ipa_mincho"],
 }  # fmt: skip
-# More faces of the scripts whose detector mistakes cost most (a han character read right
-# to left is planned backwards), in no split: never fitted on, never setting a threshold,
-# never held out; bench/detector_rates.py --more-faces reads them to check a detector.
-DETECTOR_CHECK = {
-    "han": ["arphic_bsmi", "arphic_gbsn", "arphic_gkai", "hanazono", "ipaex_mincho"],
-    "kana": ["hanazono", "ipaex_mincho"],
-    "hangul": ["baekmuk_batang", "baekmuk_gulim"],
-}
-# More CJK faces to fit on, only where a config asks (``more_cjk``): training fonts then.
-DETECTOR_MORE_TRAIN = {
-    "han": ["wqy_microhei", "cwtex_ming", "arphic_bkai", "takao_mincho"],
-    "kana": ["takao_mincho", "vl_gothic"],
-    "hangul": ["un_pen", "un_pilgia"],
-}
 DETECTOR_EVAL = {
     "hebrew": ["noto_sans_hebrew", "noto_serif_hebrew", "free_sans", "free_serif", "ezra"],
-    "arabic": [
-        "noto_naskh_arabic", "noto_sans_arabic", "noto_kufi_arabic", "noto_nastaliq_urdu",
-        "amiri", "free_serif",
-    ],
+    "arabic": ["noto_naskh_arabic", "noto_sans_arabic", "noto_kufi_arabic",
+               "noto_nastaliq_urdu", "amiri", "free_serif"],
     "latin": ["noto_sans", "noto_serif", "free_sans", "free_serif", "dancing_script"],
     "greek": ["noto_sans", "noto_serif", "free_serif"],
     "cyrillic": ["noto_sans", "noto_serif", "free_serif"],

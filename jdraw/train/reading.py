@@ -26,6 +26,7 @@ import optax
 from flax import nnx
 from tqdm.auto import tqdm
 
+from jdraw.data import cjk_faces
 from jdraw.data import fonts as F
 from jdraw.images import reading
 from jdraw.images.prepare import prepare
@@ -221,12 +222,12 @@ def _font_splits(cfg) -> tuple[dict, dict, dict]:
     each, its "fonts" the cursive word splits: train, val and test; with
     ``cfg.print_words``, ``"print"`` (:func:`print_sample`, the school glyphs of
     the planner's training split) joins the first; with ``cfg.more_cjk``, the CJK
-    faces of :data:`jdraw.data.fonts.DETECTOR_MORE_TRAIN` join the first too.
+    faces of :data:`jdraw.data.cjk_faces.DETECTOR_MORE_TRAIN` join the first too.
     """
     train = dict(F.DETECTOR_TRAIN)
     val = {s: F.DETECTOR_VAL.get(s, names) for s, names in F.DETECTOR_TRAIN.items()}
     if cfg.get("more_cjk", False):  # more CJK faces to fit on
-        train.update({s: train[s] + more for s, more in F.DETECTOR_MORE_TRAIN.items()})
+        train.update({s: train[s] + more for s, more in cjk_faces.DETECTOR_MORE_TRAIN.items()})
     held = dict(F.DETECTOR_EVAL)
     if cfg.get("cursive_words", 0):
         train["cursive"], val["cursive"], held["cursive"] = ["train"], ["val"], ["test"]

@@ -33,20 +33,26 @@ def draw(ks: kanji.KanjiSet, chars, scale: float, pen: int) -> np.ndarray:
     return img
 
 
+def kanji_drawings(n: int, seed: int = 7):
+    """Yields ``n`` drawings (``uint8 [H, W]``) of one to three KanjiVG validation
+    characters side by side, 0.8-3 times the canvas size, pens 1-7 px wide."""
+    ks = kanji.load(progress=False)
+    idx = kanji.split_indices(ks, "val")
+    rng = np.random.default_rng(seed)
+    for _ in range(n):
+        chars = rng.choice(idx, int(rng.integers(1, 4)))
+        yield draw(ks, chars, float(rng.uniform(0.8, 3.0)), int(rng.integers(1, 8)))
+
+
 def main(argv=None) -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("detectors", nargs="+", help="folders of direction.json/.npz")
     p.add_argument("--drawings", type=int, default=200)
     p.add_argument("--seed", type=int, default=7)
     a = p.parse_args(argv)
-    ks = kanji.load(progress=False)
-    idx = kanji.split_indices(ks, "val")
-    rng = np.random.default_rng(a.seed)
     nets = [reading.load(d) for d in a.detectors]
     rtl = np.zeros(len(nets), int)
-    for _ in range(a.drawings):
-        chars = rng.choice(idx, int(rng.integers(1, 4)))
-        img = draw(ks, chars, float(rng.uniform(0.8, 3.0)), int(rng.integers(1, 8)))
+    for img in kanji_drawings(a.drawings, a.seed):
         prep = prepare(img)
         for j, net in enumerate(nets):
             rtl[j] += reading.detect(prep, net) == "rtl"

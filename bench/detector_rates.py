@@ -25,11 +25,11 @@ import argparse
 import time
 
 import numpy as np
-from detector_kanji import draw
+from detector_kanji import kanji_drawings
 from rtl_words import set_words
 
 import configs.reading_direction as cfg_module
-from jdraw.data import cjk_faces, kanji
+from jdraw.data import cjk_faces
 from jdraw.data import fonts as F
 from jdraw.images import reading
 from jdraw.images.prepare import prepare
@@ -52,13 +52,7 @@ def drawings(per_font: int, seed: int, more_faces: bool = False) -> dict:
     for script, names in val_fonts.items():
         n = per_font * (SKETCHES if script == "sketch" else 1)
         out[script] = [sample(script, font, rng, cfg) for font in names for _ in range(n)]
-    ks = kanji.load(progress=False)
-    idx = kanji.split_indices(ks, "val")
-    r = np.random.default_rng(7)
-    out["kanjivg"] = []
-    for _ in range(KANJI):
-        chars = r.choice(idx, int(r.integers(1, 4)))
-        out["kanjivg"].append(draw(ks, chars, float(r.uniform(0.8, 3.0)), int(r.integers(1, 8))))
+    out["kanjivg"] = list(kanji_drawings(KANJI))
     if more_faces:
         for script, names in cjk_faces.DETECTOR_CHECK.items():
             got = [sample(script, font, rng, cfg) for font in names for _ in range(per_font)]
@@ -74,10 +68,9 @@ def scores(net, images: list) -> np.ndarray:
     got = []
     for img in images:
         try:
-            x, ink = reading.drawing_windows(prepare(img), net.width, net.span)
-        except ValueError:
+            got.append(reading.rtl_score(prepare(img), net))
+        except ValueError:  # too little ink left to read
             continue
-        got.append(reading.pool_scores(reading.window_logits(net, x), ink, net.pool))
     return np.asarray(got, np.float64)
 
 

@@ -6,8 +6,9 @@ WORKDIR is a run of ``python train.py --config configs/default.py[:NAME] --workd
 WORKDIR`` that got as far as its bundle: the splitter stage's traced examples are in
 ``WORKDIR/splitter/examples``. Set ``k`` of ``--sets`` fits the splitter stage again
 on those examples, with seeds ``k * m`` to ``k * m + m - 1`` (``m`` is the stage's
-``members``, so set 0 is the run's own splitter). Each set is written as a bundle,
-``WORKDIR/seeds/set_K/bundle``: the run's models and ranker, and the set's splitter.
+``members``, so set 0 is the run's own bundle, scored as it is). Each other set is
+written as a bundle, ``WORKDIR/seeds/set_K/bundle``: the run's models and ranker, and
+the set's splitter.
 The set is scored as ``bench/dev_scores.py`` scores a bundle. The script prints one row
 per set, then each figure's lowest and highest. A change to the planner that moves a
 figure less than this spread has not been shown to move it (docs/scripts.md, 2026-12-08).
@@ -42,7 +43,9 @@ COLUMNS = (
 
 
 def fit_set(workdir: pathlib.Path, stage_cfg, k: int) -> pathlib.Path:
-    """Set ``k``'s bundle (made once; a set whose bundle exists is reused)."""
+    """Set ``k``'s bundle: set 0 is the run's own; others are made once, then reused."""
+    if k == 0:
+        return workdir / "bundle"
     here = workdir / "seeds" / f"set_{k}"
     out = here / "bundle"
     if (out / "splitter.json").exists():
